@@ -1,0 +1,25 @@
+#pragma once
+// Mesh input and output: OBJ, OFF, PLY and STL, chosen by the file's extension
+// (case-insensitive), read and written through CGAL's IO.
+//
+// read_mesh refuses, with a message naming the file and what is wrong: a missing or unreadable
+// file, a directory, an unknown extension, a file CGAL cannot parse, no faces, a non-finite
+// coordinate, a face index out of range. Polygons with more than three corners are split into
+// triangles (ear clipping in the polygon's best-fit plane).
+//
+// write_mesh writes to a temporary file beside the target and renames it into place, so a
+// failure never leaves a partial output file.
+#include <string>
+
+#include "modeling/mesh.h"
+#include "modeling/status.h"
+
+namespace ps {
+
+Result<TriMesh> read_mesh(const std::string& path);
+Status write_mesh(const std::string& path, const TriMesh& mesh);
+
+// True when the extension is one write_mesh/read_mesh understands (.obj .off .ply .stl).
+bool is_mesh_extension(const std::string& path);
+
+}  // namespace ps

@@ -1,0 +1,38 @@
+#pragma once
+// Combinatorial facts about a triangle mesh: closedness, edge- and vertex-manifoldness,
+// consistent orientation, components, Euler characteristic and genus, signed volume.
+// Plain C++ (no CGAL) so it compiles fast and runs everywhere, including in fuzz targets.
+#include <string>
+
+#include "modeling/mesh.h"
+
+namespace ps {
+
+struct MeshTopology {
+  bool closed = false;            // every edge has exactly two incident faces
+  bool edge_manifold = false;     // no edge has more than two incident faces
+  bool vertex_manifold = false;   // the faces around every vertex form one fan
+  bool consistently_oriented = false;  // each directed edge appears at most once
+  int boundary_edges = 0;
+  int nonmanifold_edges = 0;
+  int nonmanifold_vertices = 0;
+  int degenerate_faces = 0;       // repeated vertex index or zero area (relative 1e-14)
+  int isolated_vertices = 0;
+  int components = 0;             // face-connected components
+  int euler_characteristic = 0;   // V - E + F over referenced vertices
+  int genus = -1;                 // for a closed, orientable, manifold mesh: sum over components
+  double signed_volume = 0.0;     // > 0 for outward orientation
+  double area = 0.0;
+  bool manifold() const { return edge_manifold && vertex_manifold; }
+  // The first problem, in words, or empty.
+  std::string problem;
+};
+
+MeshTopology mesh_topology(const TriMesh& mesh);
+
+// Face-connected component id per face; returns the number of components.
+int face_components(const TriMesh& mesh, std::vector<int>& component_of_face);
+
+double signed_volume(const TriMesh& mesh);
+
+}  // namespace ps

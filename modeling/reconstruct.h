@@ -1,0 +1,45 @@
+#pragma once
+// Surface reconstruction from cross sections (thesis chapter 4 for orthogonal planes, chapter 6
+// for planes of any orientation): partition a box twice the size of the points' box into convex
+// zones by every plane that holds a section, build one primitive (cylinder / frustum) per section
+// per zone, extend end-zone primitives, take their exact union (CGAL corefinement), then refine
+// and smooth with the input curves held fixed.
+//
+// Output: a closed, 2-manifold, outward-oriented triangle mesh without self-intersections that
+// contains every input curve point within 1e-6 of the bounding-box diagonal; or a Status naming
+// the offending curve when the input breaks a stroke rule.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "modeling/cross_section.h"
+#include "modeling/mesh.h"
+#include "modeling/status.h"
+
+namespace ps {
+
+struct ReconstructOptions {
+  bool improve = true;           // refinement + smoothing (4.5.1)
+  int improve_iterations = 10;
+  int threads = 0;               // 0: all hardware threads; results are identical for any count
+  // Called with a stage name and a fraction in [0, 1]; used to show progress on long runs.
+  std::function<void(const std::string& stage, double fraction)> progress;
+};
+
+struct StageTimings {
+  double validate_ms = 0, partition_ms = 0, primitives_ms = 0, union_ms = 0, improve_ms = 0,
+         total_ms = 0;
+};
+
+struct ReconstructReport {
+  int zones = 0, empty_zones = 0, end_zones = 0, body_zones = 0;
+  int primitives = 0;
+  StageTimings timings;
+  std::vector<std::string> warnings;  // e.g. "result has 2 components" (a hint, not a failure)
+};
+
+// One-shot reconstruction.
+Result<TriMesh> reconstruct(const SectionSet& sections, const ReconstructOptions& options = {},
+                            ReconstructReport* report = nullptr);
+
+}  // namespace ps
