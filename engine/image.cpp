@@ -49,8 +49,11 @@ Status write_png(const std::string& path, const Image& image) {
   if (!fs::is_directory(dir, ec))
     return Status::error(path + ": folder " + dir.string() + " does not exist");
   // Temporary file beside the target so the rename stays on one file system.
-  const fs::path tmp =
-      dir / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()));
+  std::string tmp_name = target.filename().string();
+  tmp_name.insert(tmp_name.begin(), '.');
+  tmp_name += ".tmp";
+  tmp_name += std::to_string(::getpid());
+  const fs::path tmp = dir / tmp_name;
   const int ok = stbi_write_png(tmp.c_str(), image.width, image.height, 4, image.rgba.data(),
                                 image.width * 4);
   if (!ok) {

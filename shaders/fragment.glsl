@@ -13,7 +13,8 @@ float view_depth() {
 // the upper clamp is lowered from 3e3 to 3e2 to keep sums inside float16 range.
 float oit_weight(float alpha) {
   float z = 10.0 * view_depth() / max(pc.forward.w, 1e-20);
-  float w = 10.0 / (1e-5 + pow(z / 5.0, 2.0) + pow(z / 200.0, 6.0));
+  float a = z / 5.0, b = z / 200.0, b3 = b * b * b;
+  float w = 10.0 / (1e-5 + a * a + b3 * b3);
   return alpha * clamp(w, 1e-2, 3e2);
 }
 
