@@ -1,0 +1,74 @@
+// planesketch render MESH --png FILE [--size WxH] [--view iso|x|y|z] [--wireframe]
+// Renders a mesh headless (lavapipe when there is no GPU) with the three basic planes around it.
+#include <cstdio>
+#include <memory>
+#include <regex>
+#include <string>
+
+#include "app/commands.h"
+#include "engine/renderer.h"
+#include "engine/scene.h"
+#include "modeling/mesh_io.h"
+
+namespace ps::app {
+namespace {
+
+struct RenderArgs {
+  std::string mesh;
+  std::string png;
+  std::string size = "1280x800";
+  std::string view = "iso";
+  bool wireframe = false;
+  bool validation = false;
+};
+
+void run_render(const RenderArgs& a) {
+  // === Arguments
+  const std::regex size_re(R"(^([0-9]{1,5})x([0-9]{1,5})$)");
+  std::smatch m;
+  if (!std::regex_match(a.size, m, size_re))
+    throw CommandFailed("--size '" + a.size + "': expected WIDTHxHEIGHT, e.g. 1280x800", 2);
+  const int w = std::stoi(m[1].str()), h = std::stoi(m[2].str());
+  if (w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw CommandFailed("--size '" + a.size + "': width and height must be in 1..16384", 2);
+  const auto view = engine::parse_view(a.view);
+  if (!view) throw CommandFailed("--view '" + a.view + "': expected iso, x, y or z", 2);
+  if (a.png.empty()) throw CommandFailed("--png: an output file is required", 2);
+
+  // === Load, frame, render, write
+  auto mesh = ps::read_mesh(a.mesh);
+  if (!mesh) throw CommandFailed(mesh.message());
+  const engine::Scene scene = engine::default_scene(*mesh, *view, w, h, a.wireframe);
+  engine::RendererOptions opts;
+  opts.width = w;
+  opts.height = h;
+  opts.validation = a.validation;
+  auto renderer = engine::create_offscreen_renderer(opts);
+  if (!renderer) throw CommandFailed("cannot start the renderer: " + renderer.message());
+  auto image = (*renderer)->render(scene);
+  if (!image) throw CommandFailed("rendering failed: " + image.message());
+  if (a.validation && (*renderer)->validation_messages() > 0)
+    throw CommandFailed(std::to_string((*renderer)->validation_messages()) +
+                        " Vulkan validation messages (see above); no PNG written");
+  if (auto st = engine::write_png(a.png, *image); !st) throw CommandFailed(st.message());
+}
+
+void setup_render(CLI::App& root) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = root.add_subcommand(
+      "render", "Render a mesh (OBJ, OFF, PLY, STL) with the three reference planes to a PNG");
+  cmd->add_option("mesh", args->mesh, "input mesh")->required();
+  cmd->add_option("--png", args->png, "output PNG file")->required();
+  cmd->add_option("--size", args->size, "image size WxH (default 1280x800)");
+  cmd->add_option("--view", args->view, "iso, x, y or z (default iso)");
+  cmd->add_flag("--wireframe", args->wireframe, "overlay the triangle edges");
+  cmd->add_flag("--validation", args->validation,
+                "enable Vulkan validation layers; fail if they report anything");
+  cmd->callback([args] { run_render(*args); });
+}
+
+}  // namespace
+
+PLANESKETCH_COMMAND(40, setup_render);
+
+}  // namespace ps::app
