@@ -4,6 +4,8 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <array>
+#include <initializer_list>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
@@ -253,42 +255,87 @@ Result<PairResult> match_planes(const SectionSet& in, const std::vector<CurveSta
 //   the least-squares similarity (plus translation, as in Sorkine et al. 2004, so the result
 //   does not depend on where the origin is) taking the rest points {i-1, i, i+1} to their new
 //   positions (Eq. 3.4); (s, w) is linear in V', so the rows are linear)
-//   sqrt(position_weight) (V'_i - V_i)   (weak pull to the old shape, free points only)
+//   sqrt(mu) (V'_i - V_i)   (weak pull to the old shape, free points only; mu from influence)
 // Constrained points are eliminated; the normal equations are factored with SimplicialLDLT.
-Result<std::vector<Vec2>> deform_curve(const std::vector<Vec2>& x, const std::map<int, Vec2>& fixed,
-                                       double position_weight) {
-  const Index n = x.size();
-  const Index nv = 2 * n;
-  std::vector<int> col(nv, -1);
-  int nf = 0;
-  for (Index k = 0; k < n; ++k)
-    if (!fixed.count(static_cast<int>(k))) {
-      col[2 * k] = nf++;
-      col[2 * k + 1] = nf++;
-    }
-  std::vector<Vec2> out = x;
-  for (const auto& [k, p] : fixed) out[static_cast<Index>(k)] = p;
-  if (nf == 0) return out;
-  std::vector<Eigen::Triplet<double>> trip;
-  std::vector<double> rhs;
-  trip.reserve(n * 24);
-  int row = 0;
-  auto value_of = [&](Index var) { return out[var / 2][static_cast<Eigen::Index>(var % 2)]; };
-  auto add_row = [&](const std::vector<std::pair<Index, double>>& coeffs, double b) {
+//
+// The linearised T_i may scale a Laplacian vector down as freely as it rotates it, which
+// flattens the curve's detail next to a handle (a dent of ~10% of the handle move on an
+// ellipse). A second solve fixes that: T_i is evaluated at the first solution, its scale is
+// divided out, and the plain Laplacian system L(V')_i = R_i delta_i is solved with the same
+// constraints (the usual scale normalisation of linear Laplacian editing).
+class CurveLsq {
+ public:
+  CurveLsq(const std::vector<Vec2>& x, const std::map<int, Vec2>& fixed) : n_(x.size()), col_(2 * n_, -1), out_(x) {
+    for (Index k = 0; k < n_; ++k)
+      if (!fixed.count(static_cast<int>(k))) {
+        col_[2 * k] = nf_++;
+        col_[2 * k + 1] = nf_++;
+      }
+    for (const auto& [k, p] : fixed) out_[static_cast<Index>(k)] = p;
+  }
+  int free_count() const { return nf_; }
+  const std::vector<Vec2>& known() const { return out_; }
+  // Adds the row sum_k coeffs[k].second * unknown[coeffs[k].first] = b.
+  void add_row(std::initializer_list<std::pair<Index, double>> coeffs, double b) {
+    add_row_impl(coeffs.begin(), coeffs.end(), b);
+  }
+  template <class It>
+  void add_row_impl(It first, It last, double b) {
     double r = b;
-    for (const auto& [var, a] : coeffs) {
+    for (It it = first; it != last; ++it) {
+      const auto [var, a] = *it;
       if (a == 0.0) continue;
-      if (col[var] >= 0)
-        trip.emplace_back(row, col[var], a);
+      if (col_[var] >= 0)
+        trip_.emplace_back(rows_, col_[var], a);
       else
-        r -= a * value_of(var);  // constrained unknown: move to the right-hand side
+        r -= a * out_[var / 2][static_cast<Eigen::Index>(var % 2)];  // constrained: to the right
     }
-    rhs.push_back(r);
-    ++row;
-  };
+    rhs_.push_back(r);
+    ++rows_;
+  }
+  void add_position_rows(const std::vector<Vec2>& rest, double weight) {
+    const double w = std::sqrt(weight);
+    if (!(w > 0.0)) return;
+    for (Index v = 0; v < 2 * n_; ++v)
+      if (col_[v] >= 0) add_row({{v, w}}, w * rest[v / 2][static_cast<Eigen::Index>(v % 2)]);
+  }
+  Result<std::vector<Vec2>> solve() const {
+    Eigen::SparseMatrix<double> M(rows_, nf_);
+    M.setFromTriplets(trip_.begin(), trip_.end());
+    const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(rhs_.data(), static_cast<Eigen::Index>(rhs_.size()));
+    const Eigen::SparseMatrix<double> N = M.transpose() * M;
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(N);
+    if (solver.info() != Eigen::Success)
+      return Result<std::vector<Vec2>>::error("the curve cannot be deformed (singular system)");
+    const Eigen::VectorXd sol = solver.solve(M.transpose() * b);
+    if (solver.info() != Eigen::Success || !sol.allFinite())
+      return Result<std::vector<Vec2>>::error("the curve cannot be deformed (solve failed)");
+    std::vector<Vec2> out = out_;
+    for (Index k = 0; k < n_; ++k)
+      if (col_[2 * k] >= 0) out[k] = Vec2(sol[col_[2 * k]], sol[col_[2 * k + 1]]);
+    return out;
+  }
+
+ private:
+  Index n_;
+  std::vector<int> col_;
+  int nf_ = 0;
+  std::vector<Vec2> out_;  // constrained points at their targets
+  std::vector<Eigen::Triplet<double>> trip_;
+  std::vector<double> rhs_;
+  int rows_ = 0;
+};
+
+Result<std::vector<Vec2>> deform_curve(const std::vector<Vec2>& x, const std::map<int, Vec2>& fixed,
+                                       const SewingParams& params) {
+  const Index n = x.size();
+  CurveLsq first(x, fixed);
+  if (first.free_count() == 0) return first.known();
+  std::vector<Eigen::Matrix<double, 2, 6>> fit(n);  // (s_i, w_i) as a linear map of the 6 unknowns
+  std::vector<Vec2> delta(n);
   for (Index i = 0; i < n; ++i) {
     const Index ids[3] = {(i + n - 1) % n, i, (i + 1) % n};
-    // Local similarity fit (Eq. 3.4), rest points centred for conditioning.
+    // Eq. 3.4: local similarity fit, rest points centred for conditioning.
     const Vec2 centre = (x[ids[0]] + x[ids[1]] + x[ids[2]]) / 3.0;
     Eigen::Matrix<double, 6, 4> A;
     for (int k = 0; k < 3; ++k) {
@@ -298,38 +345,43 @@ Result<std::vector<Vec2>> deform_curve(const std::vector<Vec2>& x, const std::ma
     }
     const Eigen::Matrix4d AtA = A.transpose() * A;
     const Eigen::Matrix<double, 4, 6> pinv = AtA.ldlt().solve(A.transpose());
-    const Vec2 delta = x[i] - 0.5 * (x[ids[0]] + x[ids[2]]);  // Eq. 3.2
-    Eigen::Matrix2d D;
-    D << delta.x(), delta.y(), delta.y(), -delta.x();
-    const Eigen::Matrix<double, 2, 6> TM = D * pinv.topRows<2>();
-    Eigen::Matrix<double, 2, 6> R = -TM;
+    fit[i] = pinv.topRows<2>();
+    delta[i] = x[i] - 0.5 * (x[ids[0]] + x[ids[2]]);  // Eq. 3.2
+    Eigen::Matrix2d D;  // T_i delta_i == D (s_i, w_i)
+    D << delta[i].x(), delta[i].y(), delta[i].y(), -delta[i].x();
+    Eigen::Matrix<double, 2, 6> R = -(D * fit[i]);
     // Laplacian part: columns (x_{i-1}, y_{i-1}, x_i, y_i, x_{i+1}, y_{i+1}).
     R(0, 0) -= 0.5, R(1, 1) -= 0.5, R(0, 2) += 1.0, R(1, 3) += 1.0, R(0, 4) -= 0.5, R(1, 5) -= 0.5;
-    for (int r = 0; r < 2; ++r) {
-      std::vector<std::pair<Index, double>> coeffs;
+    for (int r = 0; r < 2; ++r) {  // Eq. 3.3, first sum
+      std::array<std::pair<Index, double>, 6> coeffs;
       for (int k = 0; k < 3; ++k)
         for (int c = 0; c < 2; ++c)
-          coeffs.emplace_back(2 * ids[k] + static_cast<Index>(c), R(r, 2 * k + c));
-      add_row(coeffs, 0.0);
+          coeffs[static_cast<Index>(2 * k + c)] = {2 * ids[k] + static_cast<Index>(c), R(r, 2 * k + c)};
+      first.add_row_impl(coeffs.begin(), coeffs.end(), 0.0);
     }
   }
-  const double w = std::sqrt(position_weight);
-  if (w > 0.0)
-    for (Index v = 0; v < nv; ++v)
-      if (col[v] >= 0) add_row({{v, w}}, w * x[v / 2][static_cast<Eigen::Index>(v % 2)]);
-  Eigen::SparseMatrix<double> M(row, nf);
-  M.setFromTriplets(trip.begin(), trip.end());
-  const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size()));
-  const Eigen::SparseMatrix<double> N = M.transpose() * M;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(N);
-  if (solver.info() != Eigen::Success)
-    return Result<std::vector<Vec2>>::error("the curve cannot be deformed (singular system)");
-  const Eigen::VectorXd sol = solver.solve(M.transpose() * b);
-  if (solver.info() != Eigen::Success || !sol.allFinite())
-    return Result<std::vector<Vec2>>::error("the curve cannot be deformed (solve failed)");
-  for (Index k = 0; k < n; ++k)
-    if (col[2 * k] >= 0) out[k] = Vec2(sol[col[2 * k]], sol[col[2 * k + 1]]);
-  return out;
+  const double mu = std::pow(std::max(params.influence, 1e-3) * static_cast<double>(n), -4.0);
+  first.add_position_rows(x, mu);
+  auto v1 = first.solve();
+  if (!v1 || !params.normalize_scale) return v1;
+
+  // === Second solve: rotations from the first solution, scale divided out
+  CurveLsq second(x, fixed);
+  for (Index i = 0; i < n; ++i) {
+    const Index ids[3] = {(i + n - 1) % n, i, (i + 1) % n};
+    Eigen::Matrix<double, 6, 1> v6;
+    for (int k = 0; k < 3; ++k) v6.segment<2>(2 * k) = (*v1)[ids[k]];
+    const Vec2 sw = fit[i] * v6;
+    const double norm = sw.norm();
+    const Vec2 r = norm > 0.0 ? Vec2(sw / norm) : Vec2(1.0, 0.0);
+    const Vec2 target(r.x() * delta[i].x() + r.y() * delta[i].y(), -r.y() * delta[i].x() + r.x() * delta[i].y());
+    for (int c = 0; c < 2; ++c) {
+      const auto cc = static_cast<Index>(c);
+      second.add_row({{2 * ids[0] + cc, -0.5}, {2 * ids[1] + cc, 1.0}, {2 * ids[2] + cc, -0.5}}, target[c]);
+    }
+  }
+  second.add_position_rows(x, mu);
+  return second.solve();
 }
 
 // Turns handle requests into constrained vertices (snapping or inserting points) and deforms.
@@ -391,7 +443,7 @@ Result<bool> apply_handles(CurveState& cs, const std::vector<HandleRequest>& han
     const int v = new_index[static_cast<Index>(r.vertex)];
     if (!fixed.count(v)) fixed[v] = r.target;
   }
-  auto solved = deform_curve(pts, fixed, params.position_weight);
+  auto solved = deform_curve(pts, fixed, params);
   if (!solved) return solved.status();
   for (auto& oi : cs.original_index) oi = new_index[static_cast<Index>(oi)];
   cs.pts = std::move(*solved);
