@@ -6,6 +6,18 @@
 //
 // Fixed vertices (those on input curves) never move; fixed edges (curve edges) are never flipped
 // or split. Every step is checked for self-intersections and stepped back if it introduced any.
+//
+// Reading of the thesis (details and measurements in docs/mesh-improvement.md):
+//   - sigma at a curve vertex is the mean length of its incident *curve* edges (all incident
+//     edges when it has none), so triangles near a curve match the curve's sampling;
+//   - tau N of Eq. 4.3 is a curvature-driven normal move with a stable explicit step (see
+//     modeling/mesh_smooth.h), T the tangential part of the umbrella vector;
+//   - refinement steps are checked (locally, exact predicates) for self-intersections and redone
+//     without the offending flips; smoothing moves that cause one are undone per vertex.
+//
+// Vertex indices: output vertex i < mesh.num_vertices() is input vertex i (fixed ones at
+// bit-identical positions); vertices created by splits are appended after them. So the caller's
+// curve-vertex indices and fixed-edge pairs stay valid for the output.
 #include <array>
 #include <vector>
 
@@ -19,17 +31,45 @@ struct ImproveOptions {
   double alpha = 1.4142135623730951;  // sqrt(2), as in Liepa
   double tangential_step = 0.5;       // epsilon of Eq. 4.3
   bool check_self_intersections = true;
+  // Smoothing: explicit steps of Eq. 4.3 per round, and the normal move's step (lambda, see
+  // modeling/mesh_smooth.h); curvature_evening selects the fourth-order normal flow (a sphere
+  // stays a sphere) instead of mean-curvature flow (shrinks towards a minimal surface).
+  int smoothing_steps = 6;
+  double normal_step = 0.4;
+  bool curvature_evening = true;
+  // Refinement: alpha grows linearly to its value over the first ramp_rounds rounds (0: no ramp).
+  int ramp_rounds = 8;
+  // Refinement: no splits beyond this many faces (a guard against a tiny curve spacing).
+  int max_faces = 400000;
+  // Edges whose faces meet at a sharper angle are not flipped (a flip there changes the shape).
+  double max_flip_normal_angle_deg = 45.0;
 };
 
 struct ImproveReport {
   int splits = 0, flips = 0, smoothing_rollbacks = 0;
   double ms = 0;
+  int refinement_rollbacks = 0;  // refinement rounds redone without some flips
+  int faces_in = 0, faces_out = 0;
+  double refine_ms = 0, smooth_ms = 0, check_ms = 0;
 };
 
 // fixed_vertex: #V flags (true: on an input curve). fixed_edges: vertex pairs, either order.
 // The input must be closed and manifold; the output is too, with the same topology.
+// Endpoints of fixed edges are treated as fixed even when not flagged.
 Result<TriMesh> improve_mesh(const TriMesh& mesh, const std::vector<bool>& fixed_vertex,
                              const std::vector<std::array<int, 2>>& fixed_edges,
                              const ImproveOptions& options = {}, ImproveReport* report = nullptr);
+
+// Triangle and smoothness figures (for tests, benchmarks and reports).
+struct MeshQuality {
+  double min_angle_deg = 0;       // smallest triangle angle
+  double mean_min_angle_deg = 0;  // mean over faces of each face's smallest angle
+  double max_aspect = 0;          // largest circumradius / (2 inradius); 1 for equilateral
+  double mean_aspect = 0;
+  double max_dihedral_deg = 0;    // largest angle between the normals of adjacent faces
+  double rms_dihedral_deg = 0;    // root mean square of that angle, weighted by edge length
+};
+// Requires valid indices; edges with other than two faces are skipped in the dihedral figures.
+MeshQuality mesh_quality(const TriMesh& mesh);
 
 }  // namespace ps

@@ -1,0 +1,205 @@
+// CGAL translation unit (kernel predicates and box intersection only, no PMP).
+#include "modeling/face_intersections.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Intersections_3/Segment_3_Triangle_3.h>
+#include <CGAL/Intersections_3/Triangle_3_Triangle_3.h>
+#include <CGAL/box_intersection_d.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cmath>
+#include <numbers>
+
+namespace ps {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_3;
+using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
+
+std::size_t idx(int i) { return static_cast<std::size_t>(i); }
+
+Point to_point(const Vec3& v) { return Point(v.x(), v.y(), v.z()); }
+
+// True when faces f and g (distinct) intersect beyond what they share combinatorially.
+bool faces_intersect(const std::vector<Vec3>& pts, const Face& f, const Face& g, bool df, bool dg) {
+  int shared = 0, fi = -1, gi = -1;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (f[idx(i)] == g[idx(j)]) {
+        ++shared;
+        if (fi < 0) {
+          fi = i;
+          gi = j;
+        }
+      }
+  const Point p[3] = {to_point(pts[idx(f[0])]), to_point(pts[idx(f[1])]), to_point(pts[idx(f[2])])};
+  const Point q[3] = {to_point(pts[idx(g[0])]), to_point(pts[idx(g[1])]), to_point(pts[idx(g[2])])};
+  if (shared >= 3) return true;  // a duplicated face
+  if (shared == 2) {
+    // Shared edge: intersect only when coplanar and folded onto each other, i.e. the two
+    // opposite vertices lie on the same side of the shared edge within the common plane.
+    int fo = 0, go = 0;
+    for (int i = 0; i < 3; ++i) {
+      bool in_g = false, in_f = false;
+      for (int j = 0; j < 3; ++j) {
+        if (f[idx(i)] == g[idx(j)]) in_g = true;
+        if (g[idx(i)] == f[idx(j)]) in_f = true;
+      }
+      if (!in_g) fo = i;
+      if (!in_f) go = i;
+    }
+    const Point& a = p[(fo + 1) % 3];
+    const Point& b = p[(fo + 2) % 3];
+    return CGAL::coplanar(a, b, p[fo], q[go]) &&
+           CGAL::coplanar_orientation(a, b, p[fo], q[go]) == CGAL::POSITIVE;
+  }
+  const K::Triangle_3 tf(p[0], p[1], p[2]), tg(q[0], q[1], q[2]);
+  if (df || dg) {
+    // CGAL's triangle tests need real triangles. A degenerate face with no shared vertex is
+    // tested as its edges against the other face; with a shared vertex it cannot be told
+    // apart from touching, so it is not reported.
+    if (shared != 0 || (df && dg)) return false;
+    const Point* seg = df ? p : q;
+    const K::Triangle_3& tri = df ? tg : tf;
+    for (int i = 0; i < 3; ++i) {
+      const Point& s0 = seg[i];
+      const Point& s1 = seg[(i + 1) % 3];
+      if (s0 != s1 && CGAL::do_intersect(tri, K::Segment_3(s0, s1))) return true;
+    }
+    return false;
+  }
+  // Quick rejection with the (filtered, exact) orientation predicate: points strictly on one
+  // side of the other face's plane cannot meet it. Most candidate pairs are neighbours that
+  // end here.
+  auto one_side = [](const Point* t, const Point* others, int count) {
+    const CGAL::Orientation o0 = CGAL::orientation(t[0], t[1], t[2], others[0]);
+    if (o0 == CGAL::COPLANAR) return false;
+    for (int i = 1; i < count; ++i)
+      if (CGAL::orientation(t[0], t[1], t[2], others[i]) != o0) return false;
+    return true;
+  };
+  if (shared == 1) {
+    const Point f_opp[2] = {p[(fi + 1) % 3], p[(fi + 2) % 3]};
+    const Point g_opp[2] = {q[(gi + 1) % 3], q[(gi + 2) % 3]};
+    const bool g_misses_f = one_side(p, g_opp, 2);
+    const bool f_misses_g = one_side(q, f_opp, 2);
+    if (g_misses_f && f_misses_g) return false;
+    return (!g_misses_f && CGAL::do_intersect(tf, K::Segment_3(g_opp[0], g_opp[1]))) ||
+           (!f_misses_g && CGAL::do_intersect(tg, K::Segment_3(f_opp[0], f_opp[1])));
+  }
+  if (one_side(p, q, 3) || one_side(q, p, 3)) return false;
+  return CGAL::do_intersect(tf, tg);
+}
+
+CGAL::Bbox_3 face_box(const std::vector<Vec3>& pts, const Face& f) {
+  const Vec3& a = pts[idx(f[0])];
+  const Vec3& b = pts[idx(f[1])];
+  const Vec3& c = pts[idx(f[2])];
+  return CGAL::Bbox_3(std::min({a.x(), b.x(), c.x()}), std::min({a.y(), b.y(), c.y()}),
+                      std::min({a.z(), b.z(), c.z()}), std::max({a.x(), b.x(), c.x()}),
+                      std::max({a.y(), b.y(), c.y()}), std::max({a.z(), b.z(), c.z()}));
+}
+
+// Vertices whose fan is a graph over the plane normal to the fan's area-weighted normal N: every
+// incident face is turned towards N by a clear margin (n_f . N > 0.2 |n_f| |N|), so every face
+// projects with positive orientation, and the projected angles at the vertex sum to one turn.
+// Such a fan is embedded: two of its faces meet only in their shared vertex or edge, so their
+// exact test can be skipped. The margin keeps the double computation far from any sign
+// decision; a vertex that fails simply has its pairs tested exactly.
+std::vector<std::uint8_t> embedded_fans(const std::vector<Vec3>& pts, const std::vector<Face>& faces) {
+  const std::size_t nv = pts.size();
+  std::vector<Vec3> normal(nv, Vec3::Zero());
+  std::vector<Vec3> face_n(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const Face& fc = faces[f];
+    face_n[f] = (pts[idx(fc[1])] - pts[idx(fc[0])]).cross(pts[idx(fc[2])] - pts[idx(fc[0])]);
+    for (int v : fc) normal[idx(v)] += face_n[f];
+  }
+  std::vector<std::uint8_t> bad(nv, 0);
+  std::vector<double> turn(nv, 0.0);
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const Face& fc = faces[f];
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t v = idx(fc[idx(k)]);
+      if (bad[v]) continue;
+      const Vec3& n = normal[v];
+      const double nn = n.norm();
+      if (!(face_n[f].dot(n) > 0.2 * face_n[f].norm() * nn)) {
+        bad[v] = 1;
+        continue;
+      }
+      const Vec3 u = n / nn;
+      Vec3 e1 = pts[idx(fc[idx((k + 1) % 3)])] - pts[v];
+      Vec3 e2 = pts[idx(fc[idx((k + 2) % 3)])] - pts[v];
+      e1 -= e1.dot(u) * u;
+      e2 -= e2.dot(u) * u;
+      turn[v] += std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+    }
+  }
+  std::vector<std::uint8_t> good(nv, 0);
+  for (std::size_t v = 0; v < nv; ++v) good[v] = !bad[v] && turn[v] > 1.5 * std::numbers::pi && turn[v] < 2.5 * std::numbers::pi;
+  return good;
+}
+
+}  // namespace
+
+std::vector<std::array<int, 2>> intersecting_face_pairs(const std::vector<Vec3>& points,
+                                                        const std::vector<Face>& faces,
+                                                        const std::vector<int>& query_faces) {
+  std::vector<std::array<int, 2>> pairs;
+  if (query_faces.empty() || faces.empty()) return pairs;
+  // Degeneracy (collinear corners) once per face, on demand: -1 unknown.
+  std::vector<signed char> degenerate(faces.size(), -1);
+  auto is_degenerate = [&](int f) {
+    signed char& d = degenerate[idx(f)];
+    if (d < 0) {
+      const Face& fc = faces[idx(f)];
+      d = CGAL::collinear(to_point(points[idx(fc[0])]), to_point(points[idx(fc[1])]),
+                          to_point(points[idx(fc[2])]))
+              ? 1
+              : 0;
+    }
+    return d == 1;
+  };
+  const std::vector<std::uint8_t> embedded = embedded_fans(points, faces);
+  auto test = [&](int f, int g) {
+    if (f == g) return;
+    for (int v : faces[idx(f)])
+      if (embedded[idx(v)] && (v == faces[idx(g)][0] || v == faces[idx(g)][1] || v == faces[idx(g)][2])) return;
+    if (faces_intersect(points, faces[idx(f)], faces[idx(g)], is_degenerate(f), is_degenerate(g)))
+      pairs.push_back({std::min(f, g), std::max(f, g)});
+  };
+  // Brute-force scanning below 100 boxes: measured fastest on refined union meshes (10: 1.5x,
+  // 2000 as in PMP: 2.5x slower).
+  const std::ptrdiff_t cutoff = 100;
+  std::vector<Box> all;
+  all.reserve(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    all.emplace_back(face_box(points, faces[f]), static_cast<int>(f));
+  if (2 * query_faces.size() >= faces.size()) {
+    // Most faces are queried: one complete self-intersection scan reports each pair once.
+    std::vector<std::uint8_t> queried(faces.size(), 0);
+    for (int f : query_faces) queried[idx(f)] = 1;
+    CGAL::box_self_intersection_d(
+        all.begin(), all.end(),
+        [&](const Box& a, const Box& b) {
+          if (queried[idx(a.info())] || queried[idx(b.info())]) test(a.info(), b.info());
+        },
+        cutoff);
+  } else {
+    std::vector<Box> query;
+    query.reserve(query_faces.size());
+    for (int f : query_faces) query.emplace_back(face_box(points, faces[idx(f)]), f);
+    CGAL::box_intersection_d(
+        query.begin(), query.end(), all.begin(), all.end(),
+        [&](const Box& a, const Box& b) { test(a.info(), b.info()); }, cutoff,
+        CGAL::Box_intersection_d::CLOSED, CGAL::Box_intersection_d::BIPARTITE);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
+}
+
+}  // namespace ps

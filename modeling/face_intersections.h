@@ -1,0 +1,25 @@
+#pragma once
+// Local self-intersection test for a triangle mesh whose faces changed: which of a given set of
+// faces intersect some other face of the mesh improperly (more than a shared edge or vertex).
+// Used by mesh improvement after every refinement and smoothing step, so that only the moved
+// part of the mesh is tested (the rest is known to be free of intersections).
+//
+// Exact predicates (CGAL Epick) on the double coordinates; candidate pairs from
+// CGAL::box_intersection_d. Two faces sharing an edge intersect when they are coplanar and
+// folded onto each other; two sharing a vertex when an opposite edge meets the other triangle
+// (the rules of CGAL::Polygon_mesh_processing::does_self_intersect).
+#include <array>
+#include <vector>
+
+#include "modeling/mesh.h"
+
+namespace ps {
+
+// Pairs {q, g} with q in query_faces (indices into faces) and g any face, q != g, that
+// intersect improperly; each unordered pair once, sorted. faces may hold any triangle soup;
+// faces are compared by vertex index, so coincident duplicate vertices count as distinct.
+std::vector<std::array<int, 2>> intersecting_face_pairs(const std::vector<Vec3>& points,
+                                                        const std::vector<Face>& faces,
+                                                        const std::vector<int>& query_faces);
+
+}  // namespace ps

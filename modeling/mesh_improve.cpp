@@ -1,0 +1,242 @@
+#include "modeling/mesh_improve.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <unordered_map>
+
+#include "modeling/face_intersections.h"
+#include "modeling/halfedge_mesh.h"
+#include "modeling/mesh_refine.h"
+#include "modeling/mesh_smooth.h"
+
+namespace ps {
+namespace {
+
+// Why our own refinement and smoothing rather than CGAL's PMP::isotropic_remeshing and
+// PMP::tangential_relaxation / angle_and_area_smoothing: the thesis's target length is not one
+// number but the length attribute spread from the curves (sigma), isotropic remeshing also
+// collapses edges (it changes vertex indices, and it was seen to create self-intersections on
+// these union meshes), and neither PMP smoother moves vertices along the normal, which is what
+// removes the union's creases. The PMP headers also cost ~90 s per translation unit. Exact
+// predicates from CGAL are still used for the self-intersection checks (face_intersections.h).
+
+std::size_t idx(int i) { return static_cast<std::size_t>(i); }
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Faces whose vertex triple differs from the one at the same index in `before`, or new.
+std::vector<int> changed_faces(const HalfedgeMesh& m, const std::vector<Face>& before) {
+  std::vector<int> out;
+  for (int f = 0; f < m.num_faces(); ++f)
+    if (idx(f) >= before.size() || m.faces[idx(f)] != before[idx(f)]) out.push_back(f);
+  return out;
+}
+
+}  // namespace
+
+Result<TriMesh> improve_mesh(const TriMesh& mesh, const std::vector<bool>& fixed_vertex,
+                             const std::vector<std::array<int, 2>>& fixed_edges,
+                             const ImproveOptions& options, ImproveReport* report) {
+  const auto t_start = Clock::now();
+  ImproveReport rep;
+
+  // === Validate the input
+  const int nv = static_cast<int>(mesh.vertices.size());
+  if (fixed_vertex.size() != mesh.vertices.size())
+    return Result<TriMesh>::error("fixed_vertex has " + std::to_string(fixed_vertex.size()) +
+                                  " flags for " + std::to_string(nv) + " vertices");
+  if (options.iterations < 0 || options.smoothing_steps < 0)
+    return Result<TriMesh>::error("iterations and smoothing_steps must not be negative");
+  if (!(options.alpha > 0) || !(options.tangential_step >= 0 && options.tangential_step <= 1) ||
+      !(options.normal_step >= 0 && options.normal_step <= 1))
+    return Result<TriMesh>::error("alpha must be positive; tangential_step and normal_step in [0, 1]");
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (!mesh.vertices[v].allFinite())
+      return Result<TriMesh>::error("vertex " + std::to_string(v) + " has a non-finite coordinate");
+  auto built = HalfedgeMesh::build(mesh);
+  if (!built) return Result<TriMesh>::error("improve_mesh: " + built.message());
+  HalfedgeMesh m = std::move(built).value();
+  std::vector<std::uint8_t> fixed(idx(nv), 0);
+  for (int v = 0; v < nv; ++v) fixed[idx(v)] = fixed_vertex[idx(v)] ? 1 : 0;
+  for (std::size_t e = 0; e < fixed_edges.size(); ++e) {
+    const auto [a, b] = fixed_edges[e];
+    if (a < 0 || b < 0 || a >= nv || b >= nv || !m.constrain_edge(a, b))
+      return Result<TriMesh>::error("fixed edge " + std::to_string(e) + " (" + std::to_string(a) +
+                                    ", " + std::to_string(b) + ") is not an edge of the mesh");
+    fixed[idx(a)] = fixed[idx(b)] = 1;
+  }
+  rep.faces_in = m.num_faces();
+
+  RefineOptions ropt;
+  ropt.alpha = options.alpha;
+  ropt.max_faces = options.max_faces;
+  ropt.max_flip_normal_angle_deg = options.max_flip_normal_angle_deg;
+  SmoothOptions sopt;
+  sopt.flow = options.curvature_evening ? NormalFlow::kCurvatureEvening : NormalFlow::kMeanCurvature;
+  sopt.normal_step = options.normal_step;
+  sopt.tangential_step = options.tangential_step;
+  // The fourth-order flow is only stable below 1/2 (mesh_smooth.h).
+  if (options.ramp_rounds < 0) return Result<TriMesh>::error("ramp_rounds must not be negative");
+  if (options.curvature_evening) sopt.normal_step = std::min(sopt.normal_step, 0.45);
+
+  for (int it = 0; it < options.iterations; ++it) {
+    // Coarse to fine: with alpha ramping up over the first rounds, early rounds split only the
+    // largest faces, and their smoothing steps reach further (docs/mesh-improvement.md).
+    ropt.alpha = options.alpha;
+    if (options.ramp_rounds > 0)
+      ropt.alpha *= std::min(1.0, static_cast<double>(it + 1) / options.ramp_rounds);
+    const HalfedgeMesh start = m;
+    const std::vector<std::uint8_t> fixed_start = fixed;
+    FlipLock lock;
+    // Attempts 0-2 refine (with growing flip locks after a self-intersection the refinement
+    // made); attempt 3 only smooths.
+    for (int attempt = 0; attempt <= 3; ++attempt) {
+      // === Refinement (Liepa)
+      RefineStats rs;
+      auto t0 = Clock::now();
+      if (attempt < 3) rs = refine_mesh(m, fixed, lock, ropt);
+      rep.refine_ms += ms_since(t0);
+      const std::vector<Vec3> refined = m.positions;
+
+      // === Smoothing (Eq. 4.3); moves that turn a face over are undone at once
+      t0 = Clock::now();
+      if (options.smoothing_steps > 0) {
+        Smoother smoother(m, fixed, sopt);
+        for (int s = 0; s < options.smoothing_steps; ++s) rep.smoothing_rollbacks += smoother.step(m);
+      }
+      rep.smooth_ms += ms_since(t0);
+      if (!options.check_self_intersections) {
+        rep.splits += rs.splits;
+        rep.flips += rs.flips;
+        break;
+      }
+
+      // === Self-intersection check of everything this round changed; smoothing moves of the
+      // offending faces are undone until clean. Pairs without any moved vertex are the
+      // refinement's (a flip): then the round is redone from its start with flips locked there.
+      t0 = Clock::now();
+      const int nf = m.num_faces();
+      std::vector<std::uint8_t> query_face(idx(nf), 0);
+      for (int f : changed_faces(m, start.faces)) query_face[idx(f)] = 1;
+      std::vector<std::array<int, 2>> refinement_pairs;
+      for (;;) {
+        std::vector<std::uint8_t> moved(idx(m.num_vertices()), 0);
+        for (int v = 0; v < m.num_vertices(); ++v) moved[idx(v)] = m.positions[idx(v)] != refined[idx(v)];
+        std::vector<int> query;
+        for (int f = 0; f < nf; ++f) {
+          const Face& fc = m.faces[idx(f)];
+          if (query_face[idx(f)] || moved[idx(fc[0])] || moved[idx(fc[1])] || moved[idx(fc[2])]) query.push_back(f);
+        }
+        const auto pairs = intersecting_face_pairs(m.positions, m.faces, query);
+        if (pairs.empty()) break;
+        int undone = 0;
+        for (const auto& pr : pairs) {
+          bool any_moved = false;
+          for (int f : pr)
+            for (int v : m.faces[idx(f)])
+              if (moved[idx(v)]) {
+                m.positions[idx(v)] = refined[idx(v)];
+                moved[idx(v)] = 0;
+                any_moved = true;
+                ++undone;
+              }
+          if (!any_moved) refinement_pairs.push_back(pr);
+        }
+        rep.smoothing_rollbacks += undone;
+        // Undoing some moves can turn a face whose other vertices stay moved.
+        rep.smoothing_rollbacks += revert_folded_faces(m, refined);
+        if (undone == 0) break;
+        refinement_pairs.clear();
+      }
+      rep.check_ms += ms_since(t0);
+      if (refinement_pairs.empty() || attempt == 3) {
+        rep.splits += rs.splits;
+        rep.flips += rs.flips;
+        break;
+      }
+      ++rep.refinement_rollbacks;
+      for (const auto& pr : refinement_pairs) {
+        Box3 region;
+        for (int f : pr)
+          for (int v : m.faces[idx(f)]) region.extend(m.position(v));
+        const Vec3 grow = Vec3::Constant(region.diagonal());
+        region.min -= grow;
+        region.max += grow;
+        lock.regions.push_back(region);
+      }
+      if (attempt == 1) lock.all = true;
+      m = start;
+      fixed = fixed_start;
+    }
+  }
+
+  rep.faces_out = m.num_faces();
+  rep.ms = ms_since(t_start);
+  if (report) *report = rep;
+  return m.to_trimesh();
+}
+
+// === Quality figures
+MeshQuality mesh_quality(const TriMesh& mesh) {
+  MeshQuality q;
+  if (mesh.faces.empty()) return q;
+  const double rad = 180.0 / std::numbers::pi;
+  q.min_angle_deg = 180.0;
+  double sum_min = 0, sum_aspect = 0;
+  std::vector<Vec3> normals(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Face& fc = mesh.faces[f];
+    const Vec3 p[3] = {mesh.vertices[idx(fc[0])], mesh.vertices[idx(fc[1])], mesh.vertices[idx(fc[2])]};
+    double min_angle = 180.0;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
+      min_angle = std::min(min_angle, rad * std::atan2(u.cross(v).norm(), u.dot(v)));
+    }
+    q.min_angle_deg = std::min(q.min_angle_deg, min_angle);
+    sum_min += min_angle;
+    const double a = (p[1] - p[0]).norm(), b = (p[2] - p[1]).norm(), c = (p[0] - p[2]).norm();
+    const Vec3 n = (p[1] - p[0]).cross(p[2] - p[0]);
+    const double area = 0.5 * n.norm();
+    const double aspect = area > 0 ? a * b * c * (a + b + c) / (16.0 * area * area)
+                                   : std::numeric_limits<double>::infinity();
+    q.max_aspect = std::max(q.max_aspect, aspect);
+    sum_aspect += aspect;
+    normals[f] = n.norm() > 0 ? Vec3(n.normalized()) : Vec3::Zero();
+  }
+  q.mean_min_angle_deg = sum_min / static_cast<double>(mesh.faces.size());
+  q.mean_aspect = sum_aspect / static_cast<double>(mesh.faces.size());
+  // Dihedral figures over edges with exactly two faces.
+  std::unordered_map<std::uint64_t, std::array<int, 3>> edges;  // key -> {face, face, count}
+  edges.reserve(mesh.faces.size() * 2);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      int a = mesh.faces[f][idx(k)], b = mesh.faces[f][idx((k + 1) % 3)];
+      if (a > b) std::swap(a, b);
+      const std::uint64_t key = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+                                static_cast<std::uint32_t>(b);
+      auto [itr, inserted] = edges.try_emplace(key, std::array<int, 3>{static_cast<int>(f), -1, 0});
+      if (!inserted && itr->second[2] == 0) itr->second[1] = static_cast<int>(f);
+      if (!inserted) ++itr->second[2];
+    }
+  double wsum = 0, sq = 0;
+  for (const auto& [key, e] : edges) {
+    if (e[2] != 1) continue;
+    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+    const double len = (mesh.vertices[idx(a)] - mesh.vertices[idx(b)]).norm();
+    const Vec3& n1 = normals[idx(e[0])];
+    const Vec3& n2 = normals[idx(e[1])];
+    const double ang = rad * std::atan2(n1.cross(n2).norm(), n1.dot(n2));
+    q.max_dihedral_deg = std::max(q.max_dihedral_deg, ang);
+    sq += len * ang * ang;
+    wsum += len;
+  }
+  q.rms_dihedral_deg = wsum > 0 ? std::sqrt(sq / wsum) : 0.0;
+  return q;
+}
+
+}  // namespace ps

@@ -1,0 +1,54 @@
+#pragma once
+// Liepa-style refinement (Liepa 2003, thesis 4.5.1): centroid splits driven by per-vertex length
+// attributes spread from the curve vertices, and Delaunay-like edge relaxation.
+//
+// Length attribute sigma (#V): at a curve (fixed) vertex, the mean length of its incident curve
+// (constrained) edges, or of all its incident edges when it has no curve edge; then ring by
+// ring inward, each vertex gets the mean sigma of its neighbours in earlier rings. Vertices of a
+// component without curve vertices get that component's mean edge length.
+//
+// A face (i, j, k) with centroid c and sigma_c = (sigma_i + sigma_j + sigma_k) / 3 is split at c
+// when alpha |v_m - c| > sigma_c and alpha |v_m - c| > sigma_m for m = i, j, k. An edge is
+// relaxed (flipped) when the two angles opposite to it sum to more than pi, it is not a curve
+// edge, the flip keeps the mesh manifold, and the flip does not fold the surface (see
+// RefineOptions::max_flip_normal_angle_deg).
+#include <cstdint>
+#include <vector>
+
+#include "modeling/halfedge_mesh.h"
+
+namespace ps {
+
+struct RefineOptions {
+  double alpha = 1.4142135623730951;  // sqrt(2), Liepa's density control
+  int max_passes = 40;                // split + relax passes (each pass splits every eligible face)
+  int max_faces = 400000;             // no split beyond this many faces
+  // Only edges whose two faces' normals differ by at most this angle are flipped: a flip across
+  // a sharper crease would cut or fill the crease (a shape change, not a retriangulation).
+  double max_flip_normal_angle_deg = 45.0;
+};
+
+struct RefineStats {
+  int splits = 0, flips = 0, passes = 0;
+};
+
+// Sigma per vertex (#V); fixed is #V flags (nonzero: curve vertex).
+std::vector<double> length_attributes(const HalfedgeMesh& mesh, const std::vector<std::uint8_t>& fixed);
+
+// Regions where no edge may be flipped (used to redo a refinement whose flips made a
+// self-intersection): an edge is locked when the box of its quad meets one of the boxes.
+struct FlipLock {
+  bool all = false;
+  std::vector<Box3> regions;
+  bool locks(const Box3& quad) const;
+};
+
+// Refines in place. fixed grows with the vertex count (new vertices are free).
+RefineStats refine_mesh(HalfedgeMesh& mesh, std::vector<std::uint8_t>& fixed,
+                        const FlipLock& lock = {}, const RefineOptions& options = {});
+
+// Relaxes every edge until no flip applies (or a cap of 8 flips per edge is reached); returns
+// the number of flips. Exposed for tests.
+int relax_all_edges(HalfedgeMesh& mesh, const FlipLock& lock = {}, const RefineOptions& options = {});
+
+}  // namespace ps

@@ -1,0 +1,110 @@
+#include "modeling/mesh_smooth.h"
+
+#include <algorithm>
+
+namespace ps {
+namespace {
+
+std::size_t idx(int i) { return static_cast<std::size_t>(i); }
+
+}  // namespace
+
+Smoother::Smoother(const HalfedgeMesh& m, const std::vector<std::uint8_t>& fixed, const SmoothOptions& o)
+    : options_(o), fixed_(fixed) {
+  const int nv = m.num_vertices();
+  ring_start_.assign(idx(nv + 1), 0);
+  fan_start_.assign(idx(nv + 1), 0);
+  for (int v = 0; v < nv; ++v) {
+    ring_start_[idx(v + 1)] = ring_start_[idx(v)];
+    if (m.out[idx(v)] < 0) continue;
+    m.for_each_outgoing(v, [&](int h) {
+      ring_.push_back(m.target(h));
+      fan_.push_back(HalfedgeMesh::face_of(h));
+      ++ring_start_[idx(v + 1)];
+    });
+  }
+  fan_start_ = ring_start_;  // one face per outgoing halfedge in a closed mesh
+  fixed_.resize(idx(nv), 1);  // vertices unknown to `fixed` stay put
+}
+
+// === Eq. 4.3: p' = p + tau N + eps T
+std::vector<Vec3> Smoother::next_positions(const HalfedgeMesh& m) {
+  const int nv = m.num_vertices(), nf = m.num_faces();
+  face_normal_.resize(idx(nf));
+  for (int f = 0; f < nf; ++f) face_normal_[idx(f)] = m.face_normal(f);
+  delta_.assign(idx(nv), Vec3::Zero());
+  normal_.assign(idx(nv), Vec3::Zero());
+  kappa_.assign(idx(nv), 0.0);
+  for (int v = 0; v < nv; ++v) {
+    const int b = ring_start_[idx(v)], e = ring_start_[idx(v + 1)];
+    if (b == e) continue;
+    Vec3 sum = Vec3::Zero(), n = Vec3::Zero();
+    for (int i = b; i < e; ++i) {
+      sum += m.position(ring_[idx(i)]);
+      n += face_normal_[idx(fan_[idx(i)])];  // area-weighted: twice the area times the unit normal
+    }
+    delta_[idx(v)] = sum / (e - b) - m.position(v);
+    const double len = n.norm();
+    normal_[idx(v)] = len > 0.0 ? Vec3(n / len) : Vec3::Zero();
+    kappa_[idx(v)] = delta_[idx(v)].dot(normal_[idx(v)]);
+  }
+  std::vector<Vec3> out = m.positions;
+  for (int v = 0; v < nv; ++v) {
+    const int b = ring_start_[idx(v)], e = ring_start_[idx(v + 1)];
+    if (fixed_[idx(v)] || b == e) continue;
+    const Vec3& nrm = normal_[idx(v)];
+    double normal_move = kappa_[idx(v)];
+    if (options_.flow == NormalFlow::kCurvatureEvening) {
+      double mean = 0;
+      for (int i = b; i < e; ++i) mean += kappa_[idx(ring_[idx(i)])];
+      normal_move -= mean / (e - b);
+    }
+    const Vec3 tangential = delta_[idx(v)] - kappa_[idx(v)] * nrm;
+    out[idx(v)] = m.position(v) + options_.normal_step * normal_move * nrm + options_.tangential_step * tangential;
+  }
+  return out;
+}
+
+int Smoother::step(HalfedgeMesh& m) {
+  std::vector<Vec3> before = m.positions;
+  m.positions = next_positions(m);
+  return revert_folded_faces(m, before);
+}
+
+std::vector<Vec3> smooth_step(const HalfedgeMesh& m, const std::vector<std::uint8_t>& fixed,
+                              const SmoothOptions& o) {
+  Smoother s(m, fixed, o);
+  return s.next_positions(m);
+}
+
+int revert_folded_faces(HalfedgeMesh& m, const std::vector<Vec3>& before) {
+  int reverted = 0;
+  const int nf = m.num_faces();
+  // Ends: every round puts back at least one moved vertex, and none moves again.
+  for (;;) {
+    int changed = 0;
+    for (int f = 0; f < nf; ++f) {
+      const Face& fc = m.faces[idx(f)];
+      const Vec3 n = m.face_normal(f);
+      const Vec3& a = before[idx(fc[0])];
+      const Vec3 n0 = (before[idx(fc[1])] - a).cross(before[idx(fc[2])] - a);
+      // Turned over, or shrunk to (almost) nothing compared with its longest edge.
+      double longest = 0;
+      for (int k = 0; k < 3; ++k)
+        longest = std::max(longest, (m.position(fc[idx(k)]) - m.position(fc[idx((k + 1) % 3)])).squaredNorm());
+      const bool degenerate = !(n.norm() > 1e-10 * longest);
+      const bool turned = n0.squaredNorm() > 0.0 && !(n.dot(n0) > 0.0);
+      if (!degenerate && !turned) continue;
+      for (int v : fc)
+        if (m.positions[idx(v)] != before[idx(v)]) {
+          m.positions[idx(v)] = before[idx(v)];
+          ++reverted;
+          ++changed;
+        }
+    }
+    if (changed == 0) break;
+  }
+  return reverted;
+}
+
+}  // namespace ps
