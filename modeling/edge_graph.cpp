@@ -117,6 +117,12 @@ DeformGraph build_edge_graph(const TriMesh& mesh, const MeshEdges& me) {
   }
   to_csr(arcs, ne, g);
   floor_areas(g);
+  g.face_offsets.assign(ne + 1, 0);
+  for (std::size_t e = 0; e < ne; ++e) {
+    for (int f : me.edge_faces[e])
+      if (f >= 0) g.faces.push_back(f);
+    g.face_offsets[e + 1] = static_cast<int>(g.faces.size());
+  }
   return g;
 }
 
@@ -149,6 +155,14 @@ DeformGraph build_primal_graph(const TriMesh& mesh, const MeshEdges& me) {
   }
   to_csr(arcs, nv, g);
   floor_areas(g);
+  g.face_offsets.assign(nv + 1, 0);
+  for (const Face& t : mesh.faces)
+    for (int v : t) ++g.face_offsets[static_cast<std::size_t>(v) + 1];
+  for (std::size_t v = 0; v < nv; ++v) g.face_offsets[v + 1] += g.face_offsets[v];
+  g.faces.resize(static_cast<std::size_t>(g.face_offsets[nv]));
+  std::vector<int> fill(g.face_offsets.begin(), g.face_offsets.end() - 1);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int v : mesh.faces[f]) g.faces[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<int>(f);
   return g;
 }
 

@@ -49,6 +49,8 @@ struct DeformGraph {
   std::vector<int> neighbors;
   std::vector<double> cot;      // (cot alpha + cot beta) / 2 per directed graph edge (i -> j)
   std::vector<double> area;     // area_i per node, > 0 (floored for degenerate neighbourhoods)
+  std::vector<int> face_offsets;  // CSR: faces incident to node i (its normal's support)
+  std::vector<int> faces;
   int clamped_cotangents = 0;   // triangle corners whose cotangent was clamped
   int degenerate_triangles = 0; // zero-area triangles
   int floored_areas = 0;        // nodes whose area was zero and got floored

@@ -64,13 +64,17 @@ struct EdgeGraphDeformer::Impl {
     std::array<int, 2> v;  // local vertex ids
     std::array<double, 2> c;
     int arc_begin = 0, arc_end = 0;
+    int face_begin = 0, face_end = 0;  // into node_faces
     Vec3 delta = Vec3::Zero();  // rest Laplacian (Eq. 5.1)
+    Vec3 normal = Vec3::Zero();  // rest normal (unit) of the incident faces
+    double normal_weight = 0.0;  // weight of the normal in the rotation fit
   };
   std::vector<Node> nodes;
   std::vector<std::array<int, 2>> arc_v;
   std::vector<std::array<double, 2>> arc_c;
   std::vector<double> arc_w_plus;
   std::vector<Vec3> arc_rest;
+  std::vector<std::array<int, 3>> node_faces;  // local vertex ids
   Eigen::VectorXd row_weight;
   SpRow jf, jk, m_rhs;  // m x n_free, m x n_known, n_free x m (= J_f^T W)
   SpRow afk;            // n_free x n_known
@@ -96,6 +100,17 @@ struct EdgeGraphDeformer::Impl {
     return c[0] * x.row(v[0]) + c[1] * x.row(v[1]);
   }
 
+  Vec3 normal_of(const Node& nd) const {
+    Vec3 n = Vec3::Zero();
+    for (int f = nd.face_begin; f < nd.face_end; ++f) {
+      const auto& tri = node_faces[static_cast<std::size_t>(f)];
+      const Vec3 p0 = x.row(tri[0]).transpose();
+      n += (Vec3(x.row(tri[1]).transpose()) - p0).cross(Vec3(x.row(tri[2]).transpose()) - p0);
+    }
+    const double len = n.norm();
+    return len > 0.0 ? Vec3(n / len) : Vec3::Zero();
+  }
+
   // === Local step: R_i (Eq. 5.5 with the reflection fix), s_i, and the targets t.
   void local_step() {
     const int n_arcs = static_cast<int>(arc_v.size());
@@ -109,6 +124,10 @@ struct EdgeGraphDeformer::Impl {
           const Vec3 e_new = (yi - node_pos(arc_v[ku], arc_c[ku])).transpose();
           s_cov += arc_w_plus[ku] * arc_rest[ku] * e_new.transpose();
         }
+        // The node's normal joins the fit so a node whose 1-form spans less than a plane
+        // (boundary nodes with one positive weight) still gets a unique rotation.
+        const Vec3 n_new = normal_of(nd);
+        s_cov += nd.normal_weight * nd.normal * n_new.transpose();
         Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
         if (s_cov.squaredNorm() > 0.0) {
           Eigen::JacobiSVD<Eigen::Matrix3d> svd(s_cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
@@ -359,6 +378,7 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
   s.arc_c.clear();
   s.arc_w_plus.clear();
   s.arc_rest.clear();
+  s.node_faces.clear();
   std::vector<double> lambdas;
   std::vector<std::array<int, 2>> arc_global;
   double area_sum = 0.0;
@@ -382,6 +402,16 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
       nd.delta += w * (yi - yj);  // Eq. 5.1
     }
     nd.arc_end = static_cast<int>(s.arc_v.size());
+    nd.face_begin = static_cast<int>(s.node_faces.size());
+    for (int k = g.face_offsets[iu]; k < g.face_offsets[iu + 1]; ++k) {
+      const Face& f = s.mesh.faces[static_cast<std::size_t>(g.faces[static_cast<std::size_t>(k)])];
+      s.node_faces.push_back({local(f[0]), local(f[1]), local(f[2])});
+    }
+    nd.face_end = static_cast<int>(s.node_faces.size());
+    double wl = 0.0;
+    for (int k = nd.arc_begin; k < nd.arc_end; ++k)
+      wl += s.arc_w_plus[static_cast<std::size_t>(k)] * s.arc_rest[static_cast<std::size_t>(k)].squaredNorm();
+    nd.normal_weight = nd.arc_end > nd.arc_begin ? wl / (nd.arc_end - nd.arc_begin) : 0.0;
     area_sum += g.area[iu];
     lambdas.push_back(node_lambda(iu));
     s.nodes.push_back(nd);
@@ -436,6 +466,7 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
   s.x.resize(n_local, 3);
   for (int l = 0; l < n_local; ++l)
     s.x.row(l) = s.mesh.vertices[static_cast<std::size_t>(s.global_of[static_cast<std::size_t>(l)])].transpose();
+  for (auto& nd : s.nodes) nd.normal = s.normal_of(nd);
   s.t_rest.resize(m, 3);
   for (std::size_t a = 0; a < s.nodes.size(); ++a) {
     const Impl::Node& nd = s.nodes[a];

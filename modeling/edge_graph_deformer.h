@@ -12,8 +12,11 @@
 // handles land exactly on their targets and static vertices keep their bits.
 //
 // Choices the thesis leaves open (docs/deformation.md):
-//   - R_i: SVD of the weighted 1-form covariance S_i = sum_j w+_ij e_ij e'_ij^T, R = V U^T,
-//     with the sign of U's column for the smallest singular value flipped when det < 0 (5.5).
+//   - R_i: SVD of the weighted 1-form covariance S_i = sum_j w+_ij e_ij e'_ij^T + w_n n_i n'_i^T,
+//     R = V U^T, with the sign of U's column for the smallest singular value flipped when
+//     det < 0 (5.5). n_i is the unit normal of the faces incident to the node and w_n the mean
+//     of w+_ij |e_ij|^2: without it, a boundary node whose 1-form is one vector has no unique
+//     rotation. Rigid motions are still reproduced exactly.
 //   - s_i: the optimal isotropic scale of the node's 1-form given R_i,
 //     s_i = sum w+ e'.(R e) / sum w+ |e|^2 (the neighbourhood fit of Eq. 3.4), clamped to
 //     [0.01, 100]; T_i = s_i R_i.
