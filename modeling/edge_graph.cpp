@@ -1,0 +1,197 @@
+#include "modeling/edge_graph.h"
+
+#include <algorithm>
+#include <string>
+#include <unordered_map>
+
+#include "modeling/cotan_weights.h"
+
+namespace ps {
+namespace {
+
+std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
+// Directed weighted graph edges collected per node, then merged into CSR form.
+struct Arc {
+  int from, to;
+  double cot;
+};
+
+void to_csr(std::vector<Arc>& arcs, std::size_t num_nodes, DeformGraph& g) {
+  std::sort(arcs.begin(), arcs.end(),
+            [](const Arc& x, const Arc& y) { return x.from != y.from ? x.from < y.from : x.to < y.to; });
+  g.offsets.assign(num_nodes + 1, 0);
+  g.neighbors.clear();
+  g.cot.clear();
+  for (std::size_t k = 0; k < arcs.size(); ++k) {
+    if (k > 0 && arcs[k].from == arcs[k - 1].from && arcs[k].to == arcs[k - 1].to) {
+      g.cot.back() += arcs[k].cot;  // duplicate (same pair through two faces): sum
+      continue;
+    }
+    g.neighbors.push_back(arcs[k].to);
+    g.cot.push_back(arcs[k].cot);
+    ++g.offsets[static_cast<std::size_t>(arcs[k].from) + 1];
+  }
+  for (std::size_t i = 0; i < num_nodes; ++i) g.offsets[i + 1] += g.offsets[i];
+}
+
+void floor_areas(DeformGraph& g) {
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (double a : g.area)
+    if (a > 0.0) sum += a, ++n;
+  const double floor = n > 0 ? 1e-12 * sum / static_cast<double>(n) : 1.0;
+  for (double& a : g.area)
+    if (!(a > 0.0)) a = floor, ++g.floored_areas;
+}
+
+}  // namespace
+
+Result<MeshEdges> mesh_edges(const TriMesh& mesh) {
+  MeshEdges out;
+  const int nv = static_cast<int>(mesh.vertices.size());
+  std::unordered_map<std::uint64_t, int> index;
+  index.reserve(mesh.faces.size() * 2);
+  out.face_edges.resize(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Face& t = mesh.faces[f];
+    for (int k = 0; k < 3; ++k) {
+      if (t[static_cast<std::size_t>(k)] < 0 || t[static_cast<std::size_t>(k)] >= nv)
+        return Result<MeshEdges>::error("face " + std::to_string(f) + ": vertex index " +
+                                        std::to_string(t[static_cast<std::size_t>(k)]) + " out of range");
+    }
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+      return Result<MeshEdges>::error("face " + std::to_string(f) + " repeats a vertex");
+    for (std::size_t k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      auto [it, fresh] = index.try_emplace(edge_key(a, b), static_cast<int>(out.edges.size()));
+      if (fresh) {
+        out.edges.push_back({std::min(a, b), std::max(a, b)});
+        out.edge_faces.push_back({static_cast<int>(f), -1});
+      } else {
+        auto& ef = out.edge_faces[static_cast<std::size_t>(it->second)];
+        if (ef[1] != -1)
+          return Result<MeshEdges>::error("edge (" + std::to_string(a) + ", " + std::to_string(b) +
+                                          ") is shared by more than two faces (non-manifold)");
+        ef[1] = static_cast<int>(f);
+      }
+      out.face_edges[f][k] = it->second;
+    }
+  }
+  for (const auto& ef : out.edge_faces)
+    if (ef[1] == -1) ++out.boundary_edges;
+  return out;
+}
+
+DeformGraph build_edge_graph(const TriMesh& mesh, const MeshEdges& me) {
+  DeformGraph g;
+  const std::size_t ne = me.edges.size();
+  g.node_vertices = me.edges;
+  g.node_coef.assign(ne, {0.5, 0.5});
+  g.area.assign(ne, 0.0);
+  std::vector<Arc> arcs;
+  arcs.reserve(mesh.faces.size() * 6);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Face& t = mesh.faces[f];
+    const Vec3& p0 = mesh.vertices[static_cast<std::size_t>(t[0])];
+    const Vec3& p1 = mesh.vertices[static_cast<std::size_t>(t[1])];
+    const Vec3& p2 = mesh.vertices[static_cast<std::size_t>(t[2])];
+    const double area = 0.5 * (p1 - p0).cross(p2 - p0).norm();
+    if (!(area > 0.0)) ++g.degenerate_triangles;
+    const Vec3* p[3] = {&p0, &p1, &p2};
+    // Edge k joins corners k and k+1; edges k and k-1 (mod 3) share corner k.
+    for (std::size_t k = 0; k < 3; ++k) {
+      bool clamped = false;
+      const double c = clamped_cot(*p[k], *p[(k + 1) % 3], *p[(k + 2) % 3], &clamped);
+      if (clamped) ++g.clamped_cotangents;
+      const int e_next = me.face_edges[f][k];            // (k, k+1)
+      const int e_prev = me.face_edges[f][(k + 2) % 3];  // (k-1, k)
+      arcs.push_back({e_next, e_prev, c});
+      arcs.push_back({e_prev, e_next, c});
+      g.area[static_cast<std::size_t>(e_next)] += 0.25 * area;
+    }
+  }
+  to_csr(arcs, ne, g);
+  floor_areas(g);
+  g.face_offsets.assign(ne + 1, 0);
+  for (std::size_t e = 0; e < ne; ++e) {
+    for (int f : me.edge_faces[e])
+      if (f >= 0) g.faces.push_back(f);
+    g.face_offsets[e + 1] = static_cast<int>(g.faces.size());
+  }
+  return g;
+}
+
+DeformGraph build_primal_graph(const TriMesh& mesh, const MeshEdges& me) {
+  (void)me;
+  DeformGraph g;
+  const std::size_t nv = mesh.vertices.size();
+  g.node_vertices.resize(nv);
+  for (std::size_t v = 0; v < nv; ++v) g.node_vertices[v] = {static_cast<int>(v), static_cast<int>(v)};
+  g.node_coef.assign(nv, {1.0, 0.0});
+  g.area.assign(nv, 0.0);
+  std::vector<Arc> arcs;
+  arcs.reserve(mesh.faces.size() * 6);
+  for (const Face& t : mesh.faces) {
+    const Vec3* p[3] = {&mesh.vertices[static_cast<std::size_t>(t[0])],
+                        &mesh.vertices[static_cast<std::size_t>(t[1])],
+                        &mesh.vertices[static_cast<std::size_t>(t[2])]};
+    if (!(0.5 * (*p[1] - *p[0]).cross(*p[2] - *p[0]).norm() > 0.0)) ++g.degenerate_triangles;
+    const auto shares = mixed_areas(*p[0], *p[1], *p[2]);
+    for (std::size_t k = 0; k < 3; ++k) {
+      bool clamped = false;
+      // The angle at corner k is opposite edge (k+1, k+2).
+      const double c = 0.5 * clamped_cot(*p[k], *p[(k + 1) % 3], *p[(k + 2) % 3], &clamped);
+      if (clamped) ++g.clamped_cotangents;
+      const int a = t[(k + 1) % 3], b = t[(k + 2) % 3];
+      arcs.push_back({a, b, c});
+      arcs.push_back({b, a, c});
+      g.area[static_cast<std::size_t>(t[k])] += shares[k];
+    }
+  }
+  to_csr(arcs, nv, g);
+  floor_areas(g);
+  g.face_offsets.assign(nv + 1, 0);
+  for (const Face& t : mesh.faces)
+    for (int v : t) ++g.face_offsets[static_cast<std::size_t>(v) + 1];
+  for (std::size_t v = 0; v < nv; ++v) g.face_offsets[v + 1] += g.face_offsets[v];
+  g.faces.resize(static_cast<std::size_t>(g.face_offsets[nv]));
+  std::vector<int> fill(g.face_offsets.begin(), g.face_offsets.end() - 1);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int v : mesh.faces[f]) g.faces[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<int>(f);
+  return g;
+}
+
+Eigen::SparseMatrix<double> node_matrix(const DeformGraph& g, int num_vertices) {
+  std::vector<Eigen::Triplet<double>> trip;
+  for (std::size_t i = 0; i < g.num_nodes(); ++i)
+    for (std::size_t k = 0; k < 2; ++k)
+      if (g.node_coef[i][k] != 0.0)
+        trip.emplace_back(static_cast<int>(i), g.node_vertices[i][k], g.node_coef[i][k]);
+  Eigen::SparseMatrix<double> d(static_cast<Eigen::Index>(g.num_nodes()), num_vertices);
+  d.setFromTriplets(trip.begin(), trip.end());
+  return d;
+}
+
+Eigen::SparseMatrix<double> graph_laplacian(const DeformGraph& g) {
+  std::vector<Eigen::Triplet<double>> trip;
+  const int n = static_cast<int>(g.num_nodes());
+  for (int i = 0; i < n; ++i) {
+    double diag = 0.0;
+    for (int k = g.offsets[static_cast<std::size_t>(i)]; k < g.offsets[static_cast<std::size_t>(i) + 1]; ++k) {
+      const double w = g.weight(static_cast<std::size_t>(k), static_cast<std::size_t>(i));
+      trip.emplace_back(i, g.neighbors[static_cast<std::size_t>(k)], -w);
+      diag += w;
+    }
+    trip.emplace_back(i, i, diag);
+  }
+  Eigen::SparseMatrix<double> l(n, n);
+  l.setFromTriplets(trip.begin(), trip.end());
+  return l;
+}
+
+}  // namespace ps

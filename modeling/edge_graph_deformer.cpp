@@ -1,0 +1,577 @@
+#include "modeling/edge_graph_deformer.h"
+
+#include <Eigen/SVD>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "modeling/edge_graph.h"
+
+namespace ps {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+using MatX3 = Eigen::Matrix<double, Eigen::Dynamic, 3>;
+using SpRow = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+using SpCol = Eigen::SparseMatrix<double, Eigen::ColMajor>;
+
+constexpr std::size_t kGrain = 512;
+
+// out = m * in for a row-major sparse m and a dense n x 3 `in`, rows in parallel.
+void parallel_product(const SpRow& m, const MatX3& in, MatX3& out) {
+  out.resize(m.rows(), 3);
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, m.rows(), kGrain), [&](const auto& range) {
+    for (Eigen::Index r = range.begin(); r != range.end(); ++r) {
+      Eigen::RowVector3d acc = Eigen::RowVector3d::Zero();
+      for (SpRow::InnerIterator it(m, r); it; ++it) acc += it.value() * in.row(it.col());
+      out.row(r) = acc;
+    }
+  });
+}
+
+}  // namespace
+
+struct EdgeGraphDeformer::Impl {
+  // === Mesh state (set_mesh)
+  TriMesh mesh;
+  std::vector<Vec3> current;
+  MeshEdges edges;
+  std::vector<int> adj_offsets, adj;  // vertex adjacency (CSR)
+  std::optional<DeformGraph> graphs[2];
+  double graph_ms[2] = {0, 0};
+  double connectivity_ms = 0;
+
+  // === Region state (set_region)
+  bool has_region = false;
+  DeformParameters params;
+  std::vector<int> handles;
+  std::vector<int> global_of;  // local -> global; free first, then handles, then statics
+  int n_free = 0, n_known = 0;
+
+  struct Node {
+    std::array<int, 2> v;  // local vertex ids
+    std::array<double, 2> c;
+    int arc_begin = 0, arc_end = 0;
+    int face_begin = 0, face_end = 0;  // into node_faces
+    Vec3 delta = Vec3::Zero();  // rest Laplacian (Eq. 5.1)
+    Vec3 normal = Vec3::Zero();  // rest normal (unit) of the incident faces
+    double normal_weight = 0.0;  // weight of the normal in the rotation fit
+  };
+  std::vector<Node> nodes;
+  std::vector<std::array<int, 2>> arc_v;
+  std::vector<std::array<double, 2>> arc_c;
+  std::vector<double> arc_w_plus;
+  std::vector<Vec3> arc_rest;
+  std::vector<std::array<int, 3>> node_faces;  // local vertex ids
+  Eigen::VectorXd row_weight;
+  SpRow jf, jk, m_rhs;  // m x n_free, m x n_known, n_free x m (= J_f^T W)
+  SpRow afk;            // n_free x n_known
+  Eigen::SimplicialLDLT<SpCol, Eigen::Lower, Eigen::AMDOrdering<int>> solver;
+  MatX3 x;              // n_free + n_known rows (local order)
+  MatX3 t, t_rest;      // m x 3 targets; identity-transform targets
+  DeformStats stats;
+
+  int rows() const { return static_cast<int>(arc_v.size() + nodes.size()); }
+
+  const DeformGraph& graph(DeformDomain d) {
+    const int k = d == DeformDomain::kEdgeGraph ? 0 : 1;
+    if (!graphs[k]) {
+      const auto t0 = Clock::now();
+      graphs[k] = d == DeformDomain::kEdgeGraph ? build_edge_graph(mesh, edges)
+                                                : build_primal_graph(mesh, edges);
+      graph_ms[k] = ms_since(t0);
+    }
+    return *graphs[k];
+  }
+
+  Eigen::RowVector3d node_pos(const std::array<int, 2>& v, const std::array<double, 2>& c) const {
+    return c[0] * x.row(v[0]) + c[1] * x.row(v[1]);
+  }
+
+  Vec3 normal_of(const Node& nd) const {
+    Vec3 n = Vec3::Zero();
+    for (int f = nd.face_begin; f < nd.face_end; ++f) {
+      const auto& tri = node_faces[static_cast<std::size_t>(f)];
+      const Vec3 p0 = x.row(tri[0]).transpose();
+      n += (Vec3(x.row(tri[1]).transpose()) - p0).cross(Vec3(x.row(tri[2]).transpose()) - p0);
+    }
+    const double len = n.norm();
+    return len > 0.0 ? Vec3(n / len) : Vec3::Zero();
+  }
+
+  // === Local step: R_i (Eq. 5.5 with the reflection fix), s_i, and the targets t.
+  void local_step() {
+    const int n_arcs = static_cast<int>(arc_v.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nodes.size(), 256), [&](const auto& range) {
+      for (std::size_t a = range.begin(); a != range.end(); ++a) {
+        const Node& nd = nodes[a];
+        const Eigen::RowVector3d yi = node_pos(nd.v, nd.c);
+        Eigen::Matrix3d s_cov = Eigen::Matrix3d::Zero();
+        for (int k = nd.arc_begin; k < nd.arc_end; ++k) {
+          const auto ku = static_cast<std::size_t>(k);
+          const Vec3 e_new = (yi - node_pos(arc_v[ku], arc_c[ku])).transpose();
+          s_cov += arc_w_plus[ku] * arc_rest[ku] * e_new.transpose();
+        }
+        // The node's normal joins the fit so a node whose 1-form spans less than a plane
+        // (boundary nodes with one positive weight) still gets a unique rotation.
+        const Vec3 n_new = normal_of(nd);
+        s_cov += nd.normal_weight * nd.normal * n_new.transpose();
+        Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+        if (s_cov.squaredNorm() > 0.0) {
+          Eigen::JacobiSVD<Eigen::Matrix3d> svd(s_cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
+          Eigen::Matrix3d u = svd.matrixU();
+          r = svd.matrixV() * u.transpose();
+          if (r.determinant() < 0.0) {
+            u.col(2) *= -1.0;  // singular values are sorted: column 2 is the smallest
+            r = svd.matrixV() * u.transpose();
+          }
+        }
+        double num = 0.0, den = 0.0;
+        for (int k = nd.arc_begin; k < nd.arc_end; ++k) {
+          const auto ku = static_cast<std::size_t>(k);
+          const Vec3 re = r * arc_rest[ku];
+          const Vec3 e_new = (yi - node_pos(arc_v[ku], arc_c[ku])).transpose();
+          num += arc_w_plus[ku] * e_new.dot(re);
+          den += arc_w_plus[ku] * arc_rest[ku].squaredNorm();
+          t.row(k) = re.transpose();
+        }
+        const double s = den > 0.0 ? std::clamp(num / den, 0.01, 100.0) : 1.0;
+        t.row(n_arcs + static_cast<Eigen::Index>(a)) = (s * (r * nd.delta)).transpose();
+      }
+    });
+  }
+
+  // === Global step: A x_f = J_f^T W t - A_fk x_k.
+  void global_step() {
+    if (n_free == 0) return;
+    MatX3 b;
+    parallel_product(m_rhs, t, b);
+    if (n_known > 0) {
+      MatX3 known = x.bottomRows(n_known);
+      MatX3 c;
+      parallel_product(afk, known, c);
+      b -= c;
+    }
+    x.topRows(n_free) = solver.solve(b);
+  }
+
+  double energy() const {
+    if (n_free == 0) return 0.0;
+    MatX3 xf = x.topRows(n_free), xk = x.bottomRows(n_known);
+    MatX3 jx, jkx;
+    parallel_product(jf, xf, jx);
+    if (n_known > 0) {
+      parallel_product(jk, xk, jkx);
+      jx += jkx;
+    }
+    return tbb::parallel_reduce(
+        tbb::blocked_range<Eigen::Index>(0, jx.rows(), kGrain), 0.0,
+        [&](const auto& range, double acc) {
+          for (Eigen::Index r = range.begin(); r != range.end(); ++r)
+            acc += row_weight[r] * (jx.row(r) - t.row(r)).squaredNorm();
+          return acc;
+        },
+        [](double a, double b) { return a + b; });
+  }
+
+  Status place_handles(const std::vector<Vec3>& targets) {
+    if (!has_region) return Status::error("deformation: no region set (call set_region first)");
+    if (targets.size() != handles.size())
+      return Status::error("deformation: " + std::to_string(targets.size()) + " handle positions for " +
+                           std::to_string(handles.size()) + " handles");
+    for (std::size_t h = 0; h < targets.size(); ++h)
+      if (!targets[h].allFinite())
+        return Status::error("deformation: handle " + std::to_string(h) + " has a non-finite position");
+    for (std::size_t h = 0; h < targets.size(); ++h)
+      x.row(n_free + static_cast<Eigen::Index>(h)) = targets[h].transpose();
+    return Status::ok();
+  }
+
+  void write_back(const std::vector<Vec3>& targets) {
+    for (int l = 0; l < n_free; ++l) current[static_cast<std::size_t>(global_of[static_cast<std::size_t>(l)])] = x.row(l).transpose();
+    double res = 0.0;
+    for (std::size_t h = 0; h < handles.size(); ++h) {
+      current[static_cast<std::size_t>(handles[h])] = targets[h];
+      res = std::max(res, (x.row(n_free + static_cast<Eigen::Index>(h)).transpose() - targets[h]).norm());
+    }
+    stats.max_handle_residual = res;
+  }
+};
+
+EdgeGraphDeformer::EdgeGraphDeformer() : impl_(std::make_unique<Impl>()) {}
+EdgeGraphDeformer::~EdgeGraphDeformer() = default;
+EdgeGraphDeformer::EdgeGraphDeformer(EdgeGraphDeformer&&) noexcept = default;
+EdgeGraphDeformer& EdgeGraphDeformer::operator=(EdgeGraphDeformer&&) noexcept = default;
+
+Status EdgeGraphDeformer::set_mesh(const TriMesh& mesh) {
+  const auto t0 = Clock::now();
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (!mesh.vertices[v].allFinite())
+      return Status::error("vertex " + std::to_string(v) + " has a non-finite coordinate");
+  auto edges = mesh_edges(mesh);
+  if (!edges) return edges.status();
+  auto fresh = std::make_unique<Impl>();
+  fresh->mesh = mesh;
+  fresh->current = mesh.vertices;
+  fresh->edges = std::move(edges.value());
+  const std::size_t nv = mesh.vertices.size();
+  fresh->adj_offsets.assign(nv + 1, 0);
+  for (const auto& e : fresh->edges.edges) {
+    ++fresh->adj_offsets[static_cast<std::size_t>(e[0]) + 1];
+    ++fresh->adj_offsets[static_cast<std::size_t>(e[1]) + 1];
+  }
+  for (std::size_t v = 0; v < nv; ++v) fresh->adj_offsets[v + 1] += fresh->adj_offsets[v];
+  fresh->adj.resize(static_cast<std::size_t>(fresh->adj_offsets[nv]));
+  std::vector<int> fill(fresh->adj_offsets.begin(), fresh->adj_offsets.end() - 1);
+  for (const auto& e : fresh->edges.edges) {
+    fresh->adj[static_cast<std::size_t>(fill[static_cast<std::size_t>(e[0])]++)] = e[1];
+    fresh->adj[static_cast<std::size_t>(fill[static_cast<std::size_t>(e[1])]++)] = e[0];
+  }
+  fresh->connectivity_ms = ms_since(t0);
+  impl_ = std::move(fresh);
+  return Status::ok();
+}
+
+Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vector<int>& handles,
+                                     const DeformParameters& p) {
+  Impl& s = *impl_;
+  const auto t0 = Clock::now();
+  const int nv = static_cast<int>(s.mesh.vertices.size());
+  if (nv == 0) return Status::error("deformation: no mesh set (call set_mesh first)");
+  // === Validate
+  if (!(p.lambda >= 0.0 && p.lambda <= 1.0))
+    return Status::error("lambda: " + std::to_string(p.lambda) + " is outside [0, 1]");
+  if (!p.vertex_lambda.empty()) {
+    if (p.vertex_lambda.size() != s.mesh.vertices.size())
+      return Status::error("lambda_per_vertex: " + std::to_string(p.vertex_lambda.size()) +
+                           " values for " + std::to_string(nv) + " vertices");
+    for (std::size_t v = 0; v < p.vertex_lambda.size(); ++v) {
+      const double l = p.vertex_lambda[v];
+      if (!std::isnan(l) && !(l >= 0.0 && l <= 1.0))
+        return Status::error("lambda_per_vertex[" + std::to_string(v) + "]: " + std::to_string(l) +
+                             " is outside [0, 1]");
+    }
+  }
+  if (p.max_iterations < 0) return Status::error("max_iterations: must be >= 0");
+  if (!(p.tolerance >= 0.0) || !std::isfinite(p.tolerance))
+    return Status::error("tolerance: must be a finite number >= 0");
+  enum : char { kStatic = 0, kFree = 1, kHandle = 2 };
+  std::vector<char> kind(static_cast<std::size_t>(nv), kStatic);
+  for (std::size_t k = 0; k < handles.size(); ++k) {
+    const int h = handles[k];
+    if (h < 0 || h >= nv)
+      return Status::error("handles[" + std::to_string(k) + "]: vertex " + std::to_string(h) +
+                           " out of range (mesh has " + std::to_string(nv) + " vertices)");
+    if (kind[static_cast<std::size_t>(h)] == kHandle)
+      return Status::error("handles[" + std::to_string(k) + "]: vertex " + std::to_string(h) +
+                           " is listed twice");
+    kind[static_cast<std::size_t>(h)] = kHandle;
+  }
+  for (std::size_t k = 0; k < roi.size(); ++k) {
+    const int v = roi[k];
+    if (v < 0 || v >= nv)
+      return Status::error("roi[" + std::to_string(k) + "]: vertex " + std::to_string(v) +
+                           " out of range (mesh has " + std::to_string(nv) + " vertices)");
+    if (kind[static_cast<std::size_t>(v)] != kHandle) kind[static_cast<std::size_t>(v)] = kFree;
+  }
+  // A free part that touches no fixed vertex has no unique solution (translation).
+  {
+    std::vector<char> seen(static_cast<std::size_t>(nv), 0);
+    std::vector<int> stack;
+    for (int v0 = 0; v0 < nv; ++v0) {
+      if (kind[static_cast<std::size_t>(v0)] != kFree || seen[static_cast<std::size_t>(v0)]) continue;
+      bool anchored = false;
+      stack.assign(1, v0);
+      seen[static_cast<std::size_t>(v0)] = 1;
+      while (!stack.empty()) {
+        const int v = stack.back();
+        stack.pop_back();
+        for (int k = s.adj_offsets[static_cast<std::size_t>(v)]; k < s.adj_offsets[static_cast<std::size_t>(v) + 1]; ++k) {
+          const int w = s.adj[static_cast<std::size_t>(k)];
+          if (kind[static_cast<std::size_t>(w)] != kFree) {
+            anchored = true;
+          } else if (!seen[static_cast<std::size_t>(w)]) {
+            seen[static_cast<std::size_t>(w)] = 1;
+            stack.push_back(w);
+          }
+        }
+      }
+      if (!anchored)
+        return Status::error("roi: vertex " + std::to_string(v0) +
+                             " lies in a part of the mesh with no handle or static vertex");
+    }
+  }
+
+  const DeformGraph& g = s.graph(p.domain);
+  s.params = p;
+  s.handles = handles;
+  s.has_region = false;
+  s.current = s.mesh.vertices;
+  DeformStats st;
+  st.clamped_cotangents = g.clamped_cotangents;
+  st.degenerate_triangles = g.degenerate_triangles;
+  st.floored_areas = g.floored_areas;
+  st.mesh_ms = s.connectivity_ms + s.graph_ms[p.domain == DeformDomain::kEdgeGraph ? 0 : 1];
+
+  // === Local vertex numbering: free, then handles, then statics met in stencils.
+  std::vector<int> local_of(static_cast<std::size_t>(nv), -1);
+  s.global_of.clear();
+  for (int v = 0; v < nv; ++v)
+    if (kind[static_cast<std::size_t>(v)] == kFree) {
+      local_of[static_cast<std::size_t>(v)] = static_cast<int>(s.global_of.size());
+      s.global_of.push_back(v);
+    }
+  s.n_free = static_cast<int>(s.global_of.size());
+  for (int h : handles) {
+    local_of[static_cast<std::size_t>(h)] = static_cast<int>(s.global_of.size());
+    s.global_of.push_back(h);
+  }
+  // Active nodes: nodes whose stencil (own and neighbours' vertices) has a free vertex.
+  const std::size_t n_nodes = g.num_nodes();
+  std::vector<int> active;
+  for (std::size_t i = 0; i < n_nodes; ++i) {
+    bool touches = false;
+    auto check = [&](std::size_t node) {
+      for (std::size_t k = 0; k < 2; ++k)
+        if (kind[static_cast<std::size_t>(g.node_vertices[node][k])] == kFree) touches = true;
+    };
+    check(i);
+    for (int k = g.offsets[i]; k < g.offsets[i + 1] && !touches; ++k)
+      check(static_cast<std::size_t>(g.neighbors[static_cast<std::size_t>(k)]));
+    if (touches) active.push_back(static_cast<int>(i));
+  }
+  auto local = [&](int v) {
+    int& l = local_of[static_cast<std::size_t>(v)];
+    if (l < 0) {
+      l = static_cast<int>(s.global_of.size());
+      s.global_of.push_back(v);
+    }
+    return l;
+  };
+  auto node_lambda = [&](std::size_t node) {
+    auto lam = [&](int v) {
+      if (p.vertex_lambda.empty()) return p.lambda;
+      const double l = p.vertex_lambda[static_cast<std::size_t>(v)];
+      return std::isnan(l) ? p.lambda : l;
+    };
+    const auto& nvtx = g.node_vertices[node];
+    const auto& c = g.node_coef[node];
+    // 5.4: an edge-graph node takes the mean of its two end vertices.
+    return c[1] == 0.0 ? lam(nvtx[0]) : 0.5 * (lam(nvtx[0]) + lam(nvtx[1]));
+  };
+
+  // === Rows of J (Eq. 5.7 with D folded in) and their weights.
+  s.nodes.clear();
+  s.arc_v.clear();
+  s.arc_c.clear();
+  s.arc_w_plus.clear();
+  s.arc_rest.clear();
+  s.node_faces.clear();
+  std::vector<double> lambdas;
+  std::vector<std::array<int, 2>> arc_global;
+  double area_sum = 0.0;
+  for (int i : active) {
+    const auto iu = static_cast<std::size_t>(i);
+    Impl::Node nd;
+    nd.v = {local(g.node_vertices[iu][0]), local(g.node_vertices[iu][1])};
+    nd.c = g.node_coef[iu];
+    nd.arc_begin = static_cast<int>(s.arc_v.size());
+    const Vec3 yi = nd.c[0] * s.mesh.vertices[static_cast<std::size_t>(g.node_vertices[iu][0])] +
+                    nd.c[1] * s.mesh.vertices[static_cast<std::size_t>(g.node_vertices[iu][1])];
+    for (int k = g.offsets[iu]; k < g.offsets[iu + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(g.neighbors[static_cast<std::size_t>(k)]);
+      const double w = g.weight(static_cast<std::size_t>(k), iu);
+      const Vec3 yj = g.node_coef[j][0] * s.mesh.vertices[static_cast<std::size_t>(g.node_vertices[j][0])] +
+                      g.node_coef[j][1] * s.mesh.vertices[static_cast<std::size_t>(g.node_vertices[j][1])];
+      s.arc_v.push_back({local(g.node_vertices[j][0]), local(g.node_vertices[j][1])});
+      s.arc_c.push_back(g.node_coef[j]);
+      s.arc_w_plus.push_back(std::max(w, 0.0));
+      s.arc_rest.push_back(yi - yj);
+      nd.delta += w * (yi - yj);  // Eq. 5.1
+    }
+    nd.arc_end = static_cast<int>(s.arc_v.size());
+    nd.face_begin = static_cast<int>(s.node_faces.size());
+    for (int k = g.face_offsets[iu]; k < g.face_offsets[iu + 1]; ++k) {
+      const Face& f = s.mesh.faces[static_cast<std::size_t>(g.faces[static_cast<std::size_t>(k)])];
+      s.node_faces.push_back({local(f[0]), local(f[1]), local(f[2])});
+    }
+    nd.face_end = static_cast<int>(s.node_faces.size());
+    double wl = 0.0;
+    for (int k = nd.arc_begin; k < nd.arc_end; ++k)
+      wl += s.arc_w_plus[static_cast<std::size_t>(k)] * s.arc_rest[static_cast<std::size_t>(k)].squaredNorm();
+    nd.normal_weight = nd.arc_end > nd.arc_begin ? wl / (nd.arc_end - nd.arc_begin) : 0.0;
+    area_sum += g.area[iu];
+    lambdas.push_back(node_lambda(iu));
+    s.nodes.push_back(nd);
+  }
+  s.n_known = static_cast<int>(s.global_of.size()) - s.n_free;
+  const double area_mean = s.nodes.empty() ? 1.0 : area_sum / static_cast<double>(s.nodes.size());
+  const int n_arcs = static_cast<int>(s.arc_v.size());
+  const int m = s.rows();
+  s.row_weight.resize(m);
+  std::vector<Eigen::Triplet<double>> tf, tk;
+  tf.reserve(static_cast<std::size_t>(m) * 4);
+  tk.reserve(static_cast<std::size_t>(m));
+  auto put = [&](int row, int l, double val) {
+    if (val == 0.0) return;
+    if (l < s.n_free) tf.emplace_back(row, l, val);
+    else tk.emplace_back(row, l - s.n_free, val);
+  };
+  for (std::size_t a = 0; a < s.nodes.size(); ++a) {
+    const Impl::Node& nd = s.nodes[a];
+    const int lap_row = n_arcs + static_cast<int>(a);
+    const int iu = active[a];
+    double wsum = 0.0;
+    for (int k = nd.arc_begin; k < nd.arc_end; ++k) {
+      const auto ku = static_cast<std::size_t>(k);
+      const double w = g.weight(static_cast<std::size_t>(g.offsets[static_cast<std::size_t>(iu)] + (k - nd.arc_begin)),
+                                static_cast<std::size_t>(iu));
+      // 1-form row: y_i - y_j
+      for (std::size_t q = 0; q < 2; ++q) {
+        put(k, nd.v[q], nd.c[q]);
+        put(k, s.arc_v[ku][q], -s.arc_c[ku][q]);
+        put(lap_row, s.arc_v[ku][q], -w * s.arc_c[ku][q]);
+      }
+      s.row_weight[k] = lambdas[a] * s.arc_w_plus[ku];
+      wsum += w;
+    }
+    for (std::size_t q = 0; q < 2; ++q) put(lap_row, nd.v[q], wsum * nd.c[q]);
+    s.row_weight[lap_row] = (1.0 - lambdas[a]) * area_mean;
+  }
+  s.jf = SpRow(m, s.n_free);
+  s.jf.setFromTriplets(tf.begin(), tf.end());
+  s.jf.prune(0.0);
+  s.jk = SpRow(m, s.n_known);
+  s.jk.setFromTriplets(tk.begin(), tk.end());
+  s.jk.prune(0.0);
+  // === Normal equations
+  const SpCol jf_t_w = SpCol(s.jf.transpose()) * s.row_weight.asDiagonal();
+  const SpCol a_ff = jf_t_w * SpCol(s.jf);
+  s.m_rhs = jf_t_w;
+  s.afk = SpRow(jf_t_w * SpCol(s.jk));
+  // Rest positions and identity-transform targets (naive Laplacian editing).
+  const int n_local = static_cast<int>(s.global_of.size());
+  s.x.resize(n_local, 3);
+  for (int l = 0; l < n_local; ++l)
+    s.x.row(l) = s.mesh.vertices[static_cast<std::size_t>(s.global_of[static_cast<std::size_t>(l)])].transpose();
+  for (auto& nd : s.nodes) nd.normal = s.normal_of(nd);
+  s.t_rest.resize(m, 3);
+  for (std::size_t a = 0; a < s.nodes.size(); ++a) {
+    const Impl::Node& nd = s.nodes[a];
+    for (int k = nd.arc_begin; k < nd.arc_end; ++k) s.t_rest.row(k) = s.arc_rest[static_cast<std::size_t>(k)].transpose();
+    s.t_rest.row(n_arcs + static_cast<Eigen::Index>(a)) = nd.delta.transpose();
+  }
+  s.t = s.t_rest;
+  st.build_ms = ms_since(t0);
+  // === Factor
+  const auto t1 = Clock::now();
+  if (s.n_free > 0) {
+    s.solver.compute(a_ff);
+    if (s.solver.info() != Eigen::Success)
+      return Status::error("deformation: the system matrix could not be factored (numerical issue)");
+    st.factor_nonzeros = s.solver.matrixL().nestedExpression().nonZeros();
+  }
+  st.factor_ms = ms_since(t1);
+  st.free_vertices = s.n_free;
+  st.known_vertices = s.n_known;
+  st.nodes = static_cast<int>(s.nodes.size());
+  st.rows = m;
+  st.matrix_nonzeros = a_ff.nonZeros();
+  s.stats = st;
+  s.has_region = true;
+  return Status::ok();
+}
+
+Status EdgeGraphDeformer::deform(const std::vector<Vec3>& targets) {
+  Impl& s = *impl_;
+  const auto t0 = Clock::now();
+  if (Status ok = s.place_handles(targets); !ok) return ok;
+  s.stats.iteration_ms.clear();
+  s.stats.energies.clear();
+  s.stats.converged = false;
+  s.stats.iterations = 0;
+  // === Initial guess: naive Laplacian editing (identity transforms).
+  s.t = s.t_rest;
+  s.global_step();
+  s.stats.initial_solve_ms = ms_since(t0);
+  double e_prev = s.energy();
+  s.stats.energies.push_back(e_prev);
+  // === Local/global iterations until the relative energy change is below the tolerance.
+  for (int it = 0; it < s.params.max_iterations; ++it) {
+    const auto ti = Clock::now();
+    s.local_step();
+    s.global_step();
+    const double e = s.energy();
+    s.stats.iteration_ms.push_back(ms_since(ti));
+    s.stats.energies.push_back(e);
+    ++s.stats.iterations;
+    const double rel = std::abs(e_prev - e) / std::max(e_prev, 1e-300);
+    e_prev = e;
+    if (rel < s.params.tolerance) {
+      s.stats.converged = true;
+      break;
+    }
+  }
+  s.write_back(targets);
+  s.stats.total_ms = ms_since(t0);
+  return Status::ok();
+}
+
+Status EdgeGraphDeformer::drag(const std::vector<Vec3>& targets, int iterations) {
+  Impl& s = *impl_;
+  const auto t0 = Clock::now();
+  if (Status ok = s.place_handles(targets); !ok) return ok;
+  s.stats.iteration_ms.clear();
+  s.stats.energies.clear();
+  s.stats.iterations = 0;
+  s.stats.initial_solve_ms = 0;
+  for (int it = 0; it < std::max(iterations, 1); ++it) {
+    const auto ti = Clock::now();
+    s.local_step();
+    s.global_step();
+    s.stats.iteration_ms.push_back(ms_since(ti));
+    ++s.stats.iterations;
+  }
+  s.write_back(targets);
+  s.stats.total_ms = ms_since(t0);
+  return Status::ok();
+}
+
+const std::vector<Vec3>& EdgeGraphDeformer::vertices() const { return impl_->current; }
+
+TriMesh EdgeGraphDeformer::result() const {
+  TriMesh out;
+  out.vertices = impl_->current;
+  out.faces = impl_->mesh.faces;
+  return out;
+}
+
+const DeformStats& EdgeGraphDeformer::stats() const { return impl_->stats; }
+
+Result<TriMesh> deform_mesh(const TriMesh& mesh, const std::vector<int>& roi,
+                            const std::vector<HandleTarget>& handles, const DeformParameters& parameters,
+                            DeformStats* stats) {
+  EdgeGraphDeformer d;
+  if (Status ok = d.set_mesh(mesh); !ok) return ok;
+  std::vector<int> hv;
+  std::vector<Vec3> hp;
+  for (const auto& h : handles) hv.push_back(h.vertex), hp.push_back(h.position);
+  if (Status ok = d.set_region(roi, hv, parameters); !ok) return ok;
+  if (Status ok = d.deform(hp); !ok) return ok;
+  if (stats) *stats = d.stats();
+  return d.result();
+}
+
+}  // namespace ps
