@@ -228,6 +228,9 @@ Status finish_sections(SectionSet& set, const std::string& name, Warnings* warni
     if (m == 0.0) return Status::error(where + ": normal is zero");
     if (m > kMaxMagnitude || std::abs(p.offset) > kMaxMagnitude)
       return Status::error(where + ": normal or offset larger than 1e100 in magnitude");
+    // Already unit length (to rounding): keep it, so normalising is idempotent and round
+    // trips are bit-exact.
+    if (std::abs(p.normal.norm() - 1.0) <= 4 * std::numeric_limits<double>::epsilon()) continue;
     Vec3 n = p.normal / m;
     double d = p.offset / m;
     const double len = n.norm();
