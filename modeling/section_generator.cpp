@@ -47,6 +47,29 @@ Eigen::Matrix3d random_rotation(SeededRandom& rng) {
   return Eigen::AngleAxisd(angle, axis).toRotationMatrix();
 }
 
+// Newton steps within the plane towards the zero set (numerical in-plane gradient), each step
+// at most half a cell; the point is left where it is if the steps do not reduce |f|.
+Vec3 snap_to_surface(const ImplicitUnion& shape, const Plane& pl, Vec3 q, double cell) {
+  Vec3 u, v;
+  pl.basis(u, v);
+  const double h = 1e-7 * cell / 0.01;
+  double f = shape.value(q);
+  for (int it = 0; it < 6 && std::abs(f) > 1e-12 * cell; ++it) {
+    const Vec2 g((shape.value(q + h * u) - shape.value(q - h * u)) / (2 * h),
+                 (shape.value(q + h * v) - shape.value(q - h * v)) / (2 * h));
+    const double g2 = g.squaredNorm();
+    if (!(g2 > 1e-12)) break;
+    Vec2 step = -f * g / g2;
+    if (step.norm() > 0.5 * cell) step *= 0.5 * cell / step.norm();
+    const Vec3 next = q + step.x() * u + step.y() * v;
+    const double fn = shape.value(next);
+    if (!(std::abs(fn) < std::abs(f))) break;
+    q = next;
+    f = fn;
+  }
+  return q;
+}
+
 }  // namespace
 
 // === Implicit union
@@ -244,7 +267,7 @@ GeneratedSections generate_sections(const GeneratorOptions& options) {
       if (loop.size() < 8 || std::abs(area2(raw)) * 0.5 < 4 * cell * cell) continue;
       const auto count = std::clamp(static_cast<std::size_t>(std::lround(len / cell)), lo, hi);
       auto c = resample_closed(loop, count);
-      for (auto& q : c) q = pl.project(q);
+      for (auto& q : c) q = pl.project(snap_to_surface(out.shape, pl, q, cell));
       std::vector<Vec2> f;
       for (const auto& q : c) f.emplace_back(q.dot(u), q.dot(v));
       flat.push_back(std::move(f));

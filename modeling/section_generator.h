@@ -10,10 +10,12 @@
 // A plane is kept only when its curves are simple and pairwise disjoint (exact check).
 //
 // The curves sample the same surface, so curves on different planes agree where they meet the
-// line shared by their planes (stroke rule 4) -- up to discretisation: each curve is a
-// piecewise-linear approximation with points on the surface within about 1% of the grid cell
-// and chords within the cell size, so crossing points disagree by at most about one cell
-// (cell = 1/8 of the smallest primitive radius). Reconstruction's curve sewing absorbs this.
+// line shared by their planes (stroke rule 4) -- up to discretisation: every point is snapped
+// onto the zero set within its plane by Newton steps (|value| <= 1e-6 cell in practice), but
+// the chords between points cut corners, so where two planes' curves cross the shared line
+// their crossing points differ by up to about one point spacing times the curvature (a few
+// percent of a cell; cell = 1/8 of the smallest primitive radius). Reconstruction's curve
+// sewing absorbs this; inputs that need exact agreement should come from slice_mesh instead.
 //
 // Everything is deterministic by seed (SeededRandom, mesh_slicer.h).
 #include <cstdint>
