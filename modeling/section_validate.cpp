@@ -1,0 +1,283 @@
+// Stroke-rule validation of cross sections and nesting per plane. Segment tests use CGAL's
+// exact predicates (Epick) so touching and crossing are decided exactly on the projected points.
+#include "modeling/section_validate.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/intersections.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace ps {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using P2 = K::Point_2;
+using S2 = K::Segment_2;
+
+std::size_t uz(int i) { return static_cast<std::size_t>(i); }
+
+std::string fmt(const Vec3& p) {
+  std::ostringstream s;
+  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return s.str();
+}
+
+// Axis-aligned bounding box of a 2D polyline, for cheap rejection.
+struct Box2 {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  void add(const Vec2& p) {
+    x0 = std::min(x0, p.x()); y0 = std::min(y0, p.y());
+    x1 = std::max(x1, p.x()); y1 = std::max(y1, p.y());
+  }
+  bool overlaps(const Box2& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
+};
+
+Box2 seg_box(const Vec2& a, const Vec2& b) {
+  Box2 r;
+  r.add(a);
+  r.add(b);
+  return r;
+}
+
+// Even-odd point in polygon (the point is never on the polygon: curves do not touch).
+bool inside(const std::vector<Vec2>& poly, const Vec2& p) {
+  bool in = false;
+  const std::size_t n = poly.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2& a = poly[i];
+    const Vec2& b = poly[j];
+    if ((a.y() > p.y()) != (b.y() > p.y())) {
+      const double x = a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
+      if (p.x() < x) in = !in;
+    }
+  }
+  return in;
+}
+
+
+}  // namespace
+
+// === Plane frames
+PlaneFrame plane_frame(const Plane& plane) {
+  PlaneFrame f;
+  f.normal = plane.normal;
+  f.offset = plane.offset;
+  f.axis = plane.axis();
+  if (f.axis >= 0 && plane.normal[f.axis] > 0.0) {
+    const int k = f.axis;
+    f.u = Vec3::Unit((k + 1) % 3);
+    f.v = Vec3::Unit((k + 2) % 3);
+    f.origin = Vec3::Zero();
+    f.origin[k] = plane.offset;
+  } else {
+    f.axis = -1;
+    plane.basis(f.u, f.v);
+    f.origin = plane.offset * plane.normal;
+  }
+  return f;
+}
+
+Vec2 PlaneFrame::to_2d(const Vec3& p) const {
+  if (axis >= 0) return Vec2(p[(axis + 1) % 3], p[(axis + 2) % 3]);
+  const Vec3 d = p - origin;
+  return Vec2(d.dot(u), d.dot(v));
+}
+
+Vec3 PlaneFrame::to_3d(const Vec2& q) const {
+  if (axis >= 0) {
+    Vec3 p;
+    p[axis] = offset;
+    p[(axis + 1) % 3] = q.x();
+    p[(axis + 2) % 3] = q.y();
+    return p;
+  }
+  return origin + q.x() * u + q.y() * v;
+}
+
+// === Validation
+Result<ValidatedSections> validate_sections(const SectionSet& in) {
+  ValidatedSections out;
+  if (in.curves.empty()) return Result<ValidatedSections>::error("no cross sections: the set is empty");
+  SectionSet s = in;
+
+  // --- Planes: finite, non-zero normals, normalised, axis normals snapped to +e_k.
+  for (std::size_t i = 0; i < s.planes.size(); ++i) {
+    Plane& p = s.planes[i];
+    if (!p.normal.allFinite() || !std::isfinite(p.offset))
+      return Result<ValidatedSections>::error("plane " + std::to_string(i) + ": non-finite normal or offset");
+    const double len = p.normal.norm();
+    if (!(len > 1e-12)) return Result<ValidatedSections>::error("plane " + std::to_string(i) + ": zero normal");
+    p.normal /= len;
+    p.offset /= len;
+    for (int k = 0; k < 3; ++k) {
+      if (std::abs(std::abs(p.normal[k]) - 1.0) < 1e-12) {
+        const double sign = p.normal[k] > 0.0 ? 1.0 : -1.0;
+        p.normal = Vec3::Unit(k);
+        p.offset *= sign;
+      }
+    }
+  }
+
+  // --- Curves: plane index, point count, finite coordinates.
+  for (std::size_t i = 0; i < s.curves.size(); ++i) {
+    const CrossSection& c = s.curves[i];
+    const std::string name = "curve " + std::to_string(i);
+    if (c.plane < 0 || uz(c.plane) >= s.planes.size())
+      return Result<ValidatedSections>::error(name + ": plane index " + std::to_string(c.plane) + " does not exist");
+    if (c.points.size() < 3)
+      return Result<ValidatedSections>::error(name + ": has " + std::to_string(c.points.size()) +
+                                              " points; a closed curve needs at least 3");
+    for (std::size_t j = 0; j < c.points.size(); ++j)
+      if (!c.points[j].allFinite())
+        return Result<ValidatedSections>::error(name + ": point " + std::to_string(j) + " is not a finite number");
+  }
+  const Box3 box = bounding_box(s.all_points());
+  const double diag = std::max(box.diagonal(), 1e-300);
+  out.diagonal = box.diagonal();
+
+  // --- Coincident planes: merge (a plane given twice).
+  std::vector<int> plane_map(s.planes.size());
+  for (std::size_t i = 0; i < s.planes.size(); ++i) {
+    plane_map[i] = static_cast<int>(i);
+    for (std::size_t j = 0; j < i; ++j) {
+      if (plane_map[j] != static_cast<int>(j)) continue;
+      const Plane& a = s.planes[i];
+      const Plane& b = s.planes[j];
+      const double same = (a.normal - b.normal).norm(), opposite = (a.normal + b.normal).norm();
+      const bool coincide = (same < 1e-9 && std::abs(a.offset - b.offset) < kOffPlaneWarn * diag) ||
+                            (opposite < 1e-9 && std::abs(a.offset + b.offset) < kOffPlaneWarn * diag);
+      if (coincide) {
+        plane_map[i] = static_cast<int>(j);
+        out.warnings.push_back("planes " + std::to_string(j) + " and " + std::to_string(i) +
+                               " coincide; merged into plane " + std::to_string(j));
+        break;
+      }
+    }
+  }
+  for (auto& c : s.curves) c.plane = plane_map[uz(c.plane)];
+
+  // --- Projection onto planes, duplicate points, zero area.
+  std::vector<std::vector<Vec2>> poly2(s.curves.size());
+  for (std::size_t i = 0; i < s.curves.size(); ++i) {
+    CrossSection& c = s.curves[i];
+    const std::string name = "curve " + std::to_string(i);
+    const Plane& pl = s.planes[uz(c.plane)];
+    const PlaneFrame fr = plane_frame(pl);
+    double worst = 0.0;
+    for (auto& p : c.points) {
+      worst = std::max(worst, std::abs(pl.signed_distance(p)));
+      p = fr.to_3d(fr.to_2d(pl.project(p)));
+    }
+    if (worst > kOffPlaneError * diag)
+      return Result<ValidatedSections>::error(name + ": lies off its plane " + std::to_string(c.plane) + " by " +
+                                              std::to_string(worst) + " (more than 1e-3 of the diagonal " +
+                                              std::to_string(diag) + ")");
+    if (worst > kOffPlaneWarn * diag)
+      out.warnings.push_back(name + ": projected onto its plane (moved up to " + std::to_string(worst) + ")");
+    for (std::size_t j = 0; j < c.points.size(); ++j) {
+      const std::size_t k = (j + 1) % c.points.size();
+      if ((c.points[j] - c.points[k]).norm() <= kDuplicatePoint * diag)
+        return Result<ValidatedSections>::error(name + ": points " + std::to_string(j) + " and " + std::to_string(k) +
+                                                " coincide at " + fmt(c.points[j]));
+    }
+    for (const auto& p : c.points) poly2[i].push_back(fr.to_2d(p));
+    // Zero area: all points on one line (a bow tie has zero signed area but is reported as
+    // crossing itself below).
+    const auto& q = poly2[i];
+    std::size_t far = 0;
+    for (std::size_t j = 1; j < q.size(); ++j)
+      if ((q[j] - q[0]).squaredNorm() > (q[far] - q[0]).squaredNorm()) far = j;
+    const Vec2 dir = (q[far] - q[0]).normalized();
+    double spread = 0.0;
+    for (const auto& x : q) spread = std::max(spread, std::abs(dir.x() * (x - q[0]).y() - dir.y() * (x - q[0]).x()));
+    if (!(spread > kDuplicatePoint * diag))
+      return Result<ValidatedSections>::error(name + ": encloses zero area");
+  }
+
+  // --- Self-crossing (any two non-adjacent edges meeting, or adjacent edges overlapping).
+  auto edge = [&](std::size_t ci, std::size_t j) {
+    const auto& p = poly2[ci];
+    const Vec2& a = p[j];
+    const Vec2& b = p[(j + 1) % p.size()];
+    return S2(P2(a.x(), a.y()), P2(b.x(), b.y()));
+  };
+  for (std::size_t i = 0; i < s.curves.size(); ++i) {
+    const auto& p = poly2[i];
+    const std::size_t n = p.size();
+    std::vector<Box2> boxes(n);
+    for (std::size_t j = 0; j < n; ++j) boxes[j] = seg_box(p[j], p[(j + 1) % n]);
+    for (std::size_t j = 0; j < n; ++j) {
+      for (std::size_t k = j + 1; k < n; ++k) {
+        if (!boxes[j].overlaps(boxes[k])) continue;
+        const S2 a = edge(i, j), b = edge(i, k);
+        const bool adjacent = (k == j + 1) || (j == 0 && k == n - 1);
+        bool bad = false;
+        if (adjacent) {
+          // Adjacent edges share one vertex; they are bad only if they overlap (fold back).
+          const auto& shared = (k == j + 1) ? a.target() : a.source();
+          const auto& other_a = (k == j + 1) ? a.source() : a.target();
+          const auto& other_b = (k == j + 1) ? b.target() : b.source();
+          bad = CGAL::collinear(other_a, shared, other_b) && !CGAL::collinear_are_strictly_ordered_along_line(other_a, shared, other_b);
+        } else {
+          bad = CGAL::do_intersect(a, b);
+        }
+        if (bad)
+          return Result<ValidatedSections>::error("curve " + std::to_string(i) + " crosses itself near " +
+                                                  fmt(s.curves[i].points[j]) + " (edges " + std::to_string(j) +
+                                                  " and " + std::to_string(k) + ")");
+      }
+    }
+  }
+
+  // --- Curves on one plane must not cross or touch (rule 3).
+  std::vector<Box2> curve_box(s.curves.size());
+  for (std::size_t i = 0; i < s.curves.size(); ++i)
+    for (const auto& q : poly2[i]) curve_box[i].add(q);
+  for (std::size_t i = 0; i < s.curves.size(); ++i) {
+    for (std::size_t j = i + 1; j < s.curves.size(); ++j) {
+      if (s.curves[i].plane != s.curves[j].plane || !curve_box[i].overlaps(curve_box[j])) continue;
+      const auto& pi = poly2[i];
+      const auto& pj = poly2[j];
+      for (std::size_t a = 0; a < pi.size(); ++a) {
+        const Box2 ba = seg_box(pi[a], pi[(a + 1) % pi.size()]);
+        if (!ba.overlaps(curve_box[j])) continue;
+        for (std::size_t b = 0; b < pj.size(); ++b) {
+          if (!ba.overlaps(seg_box(pj[b], pj[(b + 1) % pj.size()]))) continue;
+          if (CGAL::do_intersect(edge(i, a), edge(j, b)))
+            return Result<ValidatedSections>::error("curves " + std::to_string(i) + " and " + std::to_string(j) +
+                                                    " on plane " + std::to_string(s.curves[i].plane) +
+                                                    " cross near " + fmt(s.curves[i].points[a]) + " (rule 3)");
+        }
+      }
+    }
+  }
+
+  // === Nesting (rule 2)
+  const std::size_t m = s.curves.size();
+  out.depth.assign(m, 0);
+  out.parent.assign(m, -1);
+  std::vector<std::vector<int>> containers(m);
+  for (std::size_t i = 0; i < m; ++i)
+    for (std::size_t j = 0; j < m; ++j)
+      if (i != j && s.curves[i].plane == s.curves[j].plane && inside(poly2[j], poly2[i][0]))
+        containers[i].push_back(static_cast<int>(j));
+  for (std::size_t i = 0; i < m; ++i) out.depth[i] = static_cast<int>(containers[i].size());
+  for (std::size_t i = 0; i < m; ++i)
+    for (int j : containers[i])
+      if (out.depth[uz(j)] == out.depth[i] - 1) out.parent[i] = j;
+  for (std::size_t i = 0; i < m; ++i) {
+    if (out.depth[i] % 2 != 0) continue;
+    SectionRegion r;
+    r.plane = s.curves[i].plane;
+    r.outer = static_cast<int>(i);
+    for (std::size_t j = 0; j < m; ++j)
+      if (out.parent[j] == static_cast<int>(i)) r.holes.push_back(static_cast<int>(j));
+    out.regions.push_back(std::move(r));
+  }
+  out.sections = std::move(s);
+  return out;
+}
+
+}  // namespace ps
