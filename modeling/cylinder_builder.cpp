@@ -7,6 +7,7 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <algorithm>
 #include <list>
 
 namespace ps {
@@ -87,6 +88,14 @@ std::vector<Vec2> perturbed_top(const PieceCache& pc, const SectionPiece& piece,
   for (int d = 0; d < 2; ++d)
     for (int side = 0; side < 2; ++side) any = any || zone.face_has_section(2 * ax[d] + side);
   if (!any || opt.perturb <= 0.0) return top;
+  // The pull never exceeds a fifth of the piece's own extent along the pull axis, so a small
+  // piece clipped at a zone corner keeps a top that sits over its bottom (larger pulls sheared
+  // the walls of tiny pieces into self-intersection).
+  Vec2 lo = pc.points.front(), hi = pc.points.front();
+  for (const auto& q : pc.points) {
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
   double scale = 1.0;
   for (int attempt = 0; attempt < 12; ++attempt, scale *= 0.5) {
     top = pc.points;
@@ -97,7 +106,7 @@ std::vector<Vec2> perturbed_top(const PieceCache& pc, const SectionPiece& piece,
         // axes never get walls of equal slope: equal slopes made exactly coincident edge-edge
         // contacts between primitives, which the corefinement turns into zero-area fins.
         const double factor = 1.0 + 0.173 * k + 0.291 * a;
-        const double delta = scale * opt.perturb * factor * zone.extent(a);
+        const double delta = scale * std::min(opt.perturb * factor * zone.extent(a), 0.2 * (hi[d] - lo[d]));
         if (pc.points[i][d] == zone.min[a] && zone.face_has_section(2 * a)) top[i][d] = pc.points[i][d] + delta;
         if (pc.points[i][d] == zone.max[a] && zone.face_has_section(2 * a + 1)) top[i][d] = pc.points[i][d] - delta;
       }
