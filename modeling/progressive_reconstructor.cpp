@@ -30,6 +30,7 @@ double ms_since(Clock::time_point t) {
 }
 
 ImproveHook g_improve_hook = nullptr;
+constexpr double kSewTolerance = 0.02;
 
 // === Canonical order of planes and curves (order independence, thesis 4.1 requirement 3).
 SectionSet canonical_sections(const SectionSet& s) {
@@ -197,9 +198,13 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
   auto t = Clock::now();
   auto checked = validate_sections(input);
   if (!checked) return checked.status();
-  auto valid = validate_sections(canonical_sections(checked->sections));
-  if (!valid) return valid.status();
+  SectionSet canonical = canonical_sections(checked->sections);
+  // Rule 4: crossing points of curves on perpendicular planes closer than 2% of the diagonal
+  // become one shared vertex (the stitching of zones needs them to agree exactly).
   rep.warnings = checked->warnings;
+  sew_crossings(canonical, kSewTolerance * checked->diagonal, &rep.warnings);
+  auto valid = validate_sections(canonical);
+  if (!valid) return Result<TriMesh>::error("after sewing crossing points (rule 4): " + valid.message());
   const SectionSet& s = valid->sections;
   for (std::size_t i = 0; i < s.planes.size(); ++i)
     if (s.planes[i].axis() < 0)

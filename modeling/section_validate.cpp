@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 namespace ps {
 namespace {
@@ -278,6 +279,120 @@ Result<ValidatedSections> validate_sections(const SectionSet& in) {
   }
   out.sections = std::move(s);
   return out;
+}
+
+// === Curve sewing (rule 4)
+namespace {
+
+struct Crossing {
+  int curve;
+  int segment;     // crossing on segment (segment, segment + 1)
+  double t;        // parameter along the segment
+  double free;     // coordinate along the line
+  bool at_vertex = false;  // the crossing is (within the snap distance) an existing vertex
+  bool used = false;
+};
+
+// Crossings of curve `ci` (on an axis plane) with the plane x_j = b.
+void crossings_of(const SectionSet& s, int ci, int j, double b, int free_axis, double snap, std::vector<Crossing>& out) {
+  const auto& pts = s.curves[uz(ci)].points;
+  const std::size_t n = pts.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& p = pts[i];
+    const Vec3& q = pts[(i + 1) % n];
+    if ((p[j] < b) == (q[j] < b)) continue;
+    const double t = (b - p[j]) / (q[j] - p[j]);
+    const double len = (q - p).norm();
+    Crossing c{ci, static_cast<int>(i), t, p[free_axis] + t * (q[free_axis] - p[free_axis])};
+    if (t * len <= snap) {
+      c.free = p[free_axis];
+      c.at_vertex = true;
+    } else if ((1.0 - t) * len <= snap) {
+      c.free = q[free_axis];
+      c.at_vertex = true;
+    }
+    out.push_back(c);
+  }
+}
+
+struct Edit {
+  int segment;
+  double t;
+  Vec3 point;
+};
+
+}  // namespace
+
+int sew_crossings(SectionSet& s, double tolerance, std::vector<std::string>* warnings) {
+  const Box3 box = bounding_box(s.all_points());
+  const double snap = 1e-6 * box.diagonal();
+  std::vector<std::vector<Edit>> edits(s.curves.size());
+  int shared = 0;
+  for (std::size_t a = 0; a < s.curves.size(); ++a) {
+    for (std::size_t bc = a + 1; bc < s.curves.size(); ++bc) {
+      const Plane& pa = s.planes[uz(s.curves[a].plane)];
+      const Plane& pb = s.planes[uz(s.curves[bc].plane)];
+      const int k = pa.axis(), j = pb.axis();
+      if (k < 0 || j < 0 || k == j) continue;
+      const int f = 3 - k - j;
+      std::vector<Crossing> ca, cb;
+      crossings_of(s, static_cast<int>(a), j, pb.offset, f, snap, ca);
+      crossings_of(s, static_cast<int>(bc), k, pa.offset, f, snap, cb);
+      if (ca.empty() && cb.empty()) continue;
+      // Mutual nearest partners closer than the tolerance share one point.
+      for (auto& x : ca) {
+        int best = -1;
+        for (std::size_t y = 0; y < cb.size(); ++y)
+          if (!cb[y].used && (best < 0 || std::abs(cb[y].free - x.free) < std::abs(cb[uz(best)].free - x.free)))
+            best = static_cast<int>(y);
+        if (best < 0 || std::abs(cb[uz(best)].free - x.free) > tolerance) continue;
+        Crossing& y = cb[uz(best)];
+        x.used = y.used = true;
+        Vec3 p;
+        p[k] = pa.offset;
+        p[j] = pb.offset;
+        // An existing vertex on the line stays where it is (it is an input point the surface
+        // must interpolate); otherwise the two crossings meet half way.
+        p[f] = x.at_vertex ? x.free : y.at_vertex ? y.free : 0.5 * (x.free + y.free);
+        edits[a].push_back(Edit{x.segment, x.t, p});
+        edits[bc].push_back(Edit{y.segment, y.t, p});
+        ++shared;
+      }
+      if (warnings) {
+        for (const auto* list : {&ca, &cb})
+          for (const auto& x : *list)
+            if (!x.used) {
+              warnings->push_back("curve " + std::to_string(x.curve) + " meets the line of planes " +
+                                  std::to_string(s.curves[a].plane) + " and " + std::to_string(s.curves[bc].plane) +
+                                  " where curve " + std::to_string(x.curve == static_cast<int>(a) ? bc : a) +
+                                  " does not (rule 4); not sewn");
+              break;
+            }
+      }
+    }
+  }
+  // Apply per curve from the last segment backwards so indices stay valid.
+  for (std::size_t c = 0; c < s.curves.size(); ++c) {
+    auto& e = edits[c];
+    if (e.empty()) continue;
+    std::sort(e.begin(), e.end(), [](const Edit& x, const Edit& y) {
+      return std::tie(x.segment, x.t) > std::tie(y.segment, y.t);
+    });
+    auto& pts = s.curves[c].points;
+    const std::size_t n = pts.size();
+    for (const auto& ed : e) {
+      const std::size_t i = uz(ed.segment);
+      const std::size_t i1 = (i + 1) % n;
+      if ((pts[i] - ed.point).norm() <= snap) {
+        pts[i] = ed.point;
+      } else if ((pts[i1] - ed.point).norm() <= snap) {
+        pts[i1] = ed.point;
+      } else {
+        pts.insert(pts.begin() + static_cast<std::ptrdiff_t>(i + 1), ed.point);
+      }
+    }
+  }
+  return shared;
 }
 
 }  // namespace ps

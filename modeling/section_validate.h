@@ -57,6 +57,15 @@ struct ValidatedSections {
 // touching itself, two curves of one plane crossing or touching (rule 3).
 Result<ValidatedSections> validate_sections(const SectionSet& sections);
 
+// Curve sewing for stroke rule 4 (orthogonal planes): where a curve on plane x_k = a crosses the
+// line {x_k = a, x_j = b} and a curve on plane x_j = b crosses it nearby (closer than
+// `tolerance`, absolute), both get one shared vertex at the mean of the two crossing points
+// (an existing vertex within 1e-6 of the diagonal of the crossing is moved, otherwise a vertex is
+// inserted). Crossings without a partner are reported as warnings (a large disagreement).
+// Input: a canonical validated set (axis normals +e_k, points exactly on their planes).
+// Returns the number of shared crossing points made.
+int sew_crossings(SectionSet& sections, double tolerance, std::vector<std::string>* warnings = nullptr);
+
 // Relative tolerances, shared with the reconstruction (fractions of the bounding-box diagonal).
 inline constexpr double kOffPlaneError = 1e-3;
 inline constexpr double kOffPlaneWarn = 1e-6;

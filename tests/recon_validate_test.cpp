@@ -173,5 +173,40 @@ TEST(ReconValidate, ObliquePlanesAreRefusedByTheOrthogonalReconstruction) {
   EXPECT_NE(m.message().find("not an axis plane"), std::string::npos) << m.message();
 }
 
+TEST(ReconValidate, SewingMakesOneSharedCrossingPoint) {
+  // A square on z = 0 crossing the line {z = 0, x = 0.5} at y = 0 and y = 1; a square on x = 0.5
+  // crossing the same line at y = 0.001 and y = 1.002.
+  SectionSet s;
+  s.planes.push_back(Plane{Vec3::UnitZ(), 0.0});
+  s.planes.push_back(Plane{Vec3::UnitX(), 0.5});
+  s.curves.push_back(CrossSection{0, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}});
+  s.curves.push_back(CrossSection{1, {Vec3(0.5, 0.001, -0.5), Vec3(0.5, 1.002, -0.5), Vec3(0.5, 1.002, 0.5),
+                                      Vec3(0.5, 0.001, 0.5)}});
+  auto v = validate_sections(s);
+  ASSERT_TRUE(v) << v.message();
+  SectionSet sewn = v->sections;
+  std::vector<std::string> warnings;
+  EXPECT_EQ(sew_crossings(sewn, 0.02 * v->diagonal, &warnings), 2);
+  EXPECT_TRUE(warnings.empty());
+  // Both curves now hold the same two points on the line, half way between the crossings.
+  for (const Vec3& p : {Vec3(0.5, 0.0005, 0.0), Vec3(0.5, 1.001, 0.0)}) {
+    for (const auto& c : sewn.curves) {
+      bool found = false;
+      for (const auto& q : c.points) found = found || (q - p).norm() < 1e-15;
+      EXPECT_TRUE(found) << p.transpose();
+    }
+  }
+  EXPECT_EQ(sewn.curves[0].points.size(), 6u);
+  EXPECT_TRUE(validate_sections(sewn));
+
+  // A partner too far away is not sewn but reported.
+  SectionSet far = v->sections;
+  far.curves[1].points = {Vec3(0.5, 0.3, -0.5), Vec3(0.5, 1.002, -0.5), Vec3(0.5, 1.002, 0.5), Vec3(0.5, 0.3, 0.5)};
+  warnings.clear();
+  EXPECT_EQ(sew_crossings(far, 0.02 * v->diagonal, &warnings), 1);
+  ASSERT_FALSE(warnings.empty());
+  EXPECT_NE(warnings[0].find("rule 4"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace ps
