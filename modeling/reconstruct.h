@@ -8,12 +8,14 @@
 // Output: a closed, 2-manifold, outward-oriented triangle mesh without self-intersections that
 // contains every input curve point within 1e-6 of the bounding-box diagonal; or a Status naming
 // the offending curve when the input breaks a stroke rule.
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "modeling/cross_section.h"
 #include "modeling/mesh.h"
+#include "modeling/mesh_improve.h"
 #include "modeling/status.h"
 
 namespace ps {
@@ -27,19 +29,40 @@ struct ReconstructOptions {
 };
 
 struct StageTimings {
-  double validate_ms = 0, partition_ms = 0, primitives_ms = 0, union_ms = 0, improve_ms = 0,
-         total_ms = 0;
+  double validate_ms = 0, partition_ms = 0, primitives_ms = 0, union_ms = 0, stitch_ms = 0,
+         improve_ms = 0, total_ms = 0;
 };
 
 struct ReconstructReport {
   int zones = 0, empty_zones = 0, end_zones = 0, body_zones = 0;
   int primitives = 0;
+  int zones_recomputed = 0;  // zones whose union was computed (not taken from the cache)
+  int components = 0;
+  bool improved = false;
   StageTimings timings;
   std::vector<std::string> warnings;  // e.g. "result has 2 components" (a hint, not a failure)
+  // For the improvement step and the app, indexing the returned mesh: per-vertex "lies on an
+  // input curve" and the mesh edges lying along input curves (vertex pairs, smaller first).
+  std::vector<bool> curve_vertex;
+  std::vector<std::array<int, 2>> curve_edges;
 };
 
-// One-shot reconstruction.
+// === Improvement hook
+// improve_mesh() lives in another part of the project; the integrator connects it here. Without
+// a hook, improvement is skipped with the warning "mesh improvement unavailable".
+using ImproveHook = Result<TriMesh> (*)(const TriMesh&, const std::vector<bool>&,
+                                        const std::vector<std::array<int, 2>>&, const ImproveOptions&,
+                                        ImproveReport*);
+void set_improve_hook(ImproveHook hook);
+ImproveHook improve_hook();
+
+// One-shot reconstruction. The bounding box is default_reconstruction_box (zone_partition.h):
+// twice the points' box about its centre. The result does not depend on the order of the curves
+// or planes, nor on the thread count.
 Result<TriMesh> reconstruct(const SectionSet& sections, const ReconstructOptions& options = {},
                             ReconstructReport* report = nullptr);
+
+// Orthogonal input is required for now (every plane holding a curve is an axis plane); other
+// input is refused with a message naming the plane.
 
 }  // namespace ps

@@ -1,0 +1,230 @@
+// Cylinders (prisms) per zone, thesis 4.3 (Eq. 4.1) and 4.4. Caps are CGAL constrained Delaunay
+// triangulations (exact predicates) of the section pieces.
+#include "modeling/cylinder_builder.h"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <list>
+
+namespace ps {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+struct FaceInfo {
+  int nesting = -1;
+};
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
+using Fbb = CGAL::Triangulation_face_base_with_info_2<FaceInfo, K>;
+using Fb = CGAL::Constrained_triangulation_face_base_2<K, Fbb>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
+
+std::size_t uz(int i) { return static_cast<std::size_t>(i); }
+
+// Nesting level of every face by flood fill from the infinite face, crossing a constraint
+// increments the level; odd levels are inside the piece.
+void mark_domains(CDT& cdt) {
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info().nesting = -1;
+  std::list<CDT::Edge> border;
+  auto fill = [&](CDT::Face_handle start, int level) {
+    std::list<CDT::Face_handle> queue{start};
+    while (!queue.empty()) {
+      CDT::Face_handle fh = queue.front();
+      queue.pop_front();
+      if (fh->info().nesting != -1) continue;
+      fh->info().nesting = level;
+      for (int i = 0; i < 3; ++i) {
+        CDT::Edge e(fh, i);
+        CDT::Face_handle n = fh->neighbor(i);
+        if (n->info().nesting == -1) {
+          if (cdt.is_constrained(e))
+            border.push_back(e);
+          else
+            queue.push_back(n);
+        }
+      }
+    }
+  };
+  fill(cdt.infinite_face(), 0);
+  while (!border.empty()) {
+    CDT::Edge e = border.front();
+    border.pop_front();
+    CDT::Face_handle n = e.first->neighbor(e.second);
+    if (n->info().nesting == -1) fill(n, e.first->info().nesting + 1);
+  }
+}
+
+double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+// Axis coordinate -> 3D point on an axis plane frame (axis k, in-plane coordinates q).
+Vec3 lift(int k, double coord, const Vec2& q) {
+  Vec3 p;
+  p[k] = coord;
+  p[(k + 1) % 3] = q.x();
+  p[(k + 2) % 3] = q.y();
+  return p;
+}
+
+struct PieceCache {
+  std::vector<Vec2> points;                   // concatenated loops
+  std::vector<std::array<int, 2>> loop_range;  // [begin, end) per loop
+  std::vector<std::array<int, 3>> tris;        // counter-clockwise in 2D
+};
+
+// The top's 2D points, with points on side faces that carry a section pulled into the zone
+// (thesis 4.3). Halves the pull until no cap triangle flips.
+std::vector<Vec2> perturbed_top(const PieceCache& pc, const SectionPiece& piece, const Zone& zone,
+                                const CylinderOptions& opt) {
+  const int k = piece.axis;
+  const int ax[2] = {(k + 1) % 3, (k + 2) % 3};
+  std::vector<Vec2> top = pc.points;
+  bool any = false;
+  for (int d = 0; d < 2; ++d)
+    for (int side = 0; side < 2; ++side) any = any || zone.face_has_section(2 * ax[d] + side);
+  if (!any || opt.perturb <= 0.0) return top;
+  // The pull never exceeds a fifth of the piece's own extent along the pull axis, so a small
+  // piece clipped at a zone corner keeps a top that sits over its bottom (larger pulls sheared
+  // the walls of tiny pieces into self-intersection).
+  Vec2 lo = pc.points.front(), hi = pc.points.front();
+  for (const auto& q : pc.points) {
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
+  double scale = 1.0;
+  for (int attempt = 0; attempt < 12; ++attempt, scale *= 0.5) {
+    top = pc.points;
+    for (std::size_t i = 0; i < top.size(); ++i) {
+      for (int d = 0; d < 2; ++d) {
+        const int a = ax[d];
+        // The factor differs per (prism axis, pull axis) pair so that prisms of different
+        // axes never get walls of equal slope: equal slopes made exactly coincident edge-edge
+        // contacts between primitives, which the corefinement turns into zero-area fins.
+        const double factor = 1.0 + 0.173 * k + 0.291 * a;
+        const double delta = scale * std::min(opt.perturb * factor * zone.extent(a), 0.2 * (hi[d] - lo[d]));
+        if (pc.points[i][d] == zone.min[a] && zone.face_has_section(2 * a)) top[i][d] = pc.points[i][d] + delta;
+        if (pc.points[i][d] == zone.max[a] && zone.face_has_section(2 * a + 1)) top[i][d] = pc.points[i][d] - delta;
+      }
+    }
+    bool ok = true;
+    for (const auto& t : pc.tris) {
+      const double before = orient(pc.points[uz(t[0])], pc.points[uz(t[1])], pc.points[uz(t[2])]);
+      const double after = orient(top[uz(t[0])], top[uz(t[1])], top[uz(t[2])]);
+      if (!(after > 1e-3 * before)) {
+        ok = false;
+        break;
+      }
+    }
+    if (ok) return top;
+  }
+  return pc.points;
+}
+
+// A prism between the axis coordinates c0 (bottom, the piece's plane side) and c1 along axis k,
+// bottom points `bottom`, top points `top` (2D, same indexing). Outward oriented.
+TriMesh prism(const PieceCache& pc, int k, double c0, double c1, const std::vector<Vec2>& top) {
+  TriMesh m;
+  const int n = static_cast<int>(pc.points.size());
+  m.vertices.reserve(uz(2 * n));
+  for (const auto& q : pc.points) m.vertices.push_back(lift(k, c0, q));
+  for (const auto& q : top) m.vertices.push_back(lift(k, c1, q));
+  // Built for a prism going towards +e_k (c1 > c0): bottom cap faces -e_k, top cap faces +e_k.
+  for (const auto& t : pc.tris) {
+    m.faces.push_back({t[0], t[2], t[1]});
+    m.faces.push_back({t[0] + n, t[1] + n, t[2] + n});
+  }
+  for (const auto& r : pc.loop_range) {
+    for (int i = r[0]; i < r[1]; ++i) {
+      const int j = i + 1 == r[1] ? r[0] : i + 1;
+      m.faces.push_back({i, j, j + n});
+      m.faces.push_back({i, j + n, i + n});
+    }
+  }
+  if (c1 < c0)
+    for (auto& f : m.faces) std::swap(f[1], f[2]);
+  return m;
+}
+
+}  // namespace
+
+std::vector<std::array<int, 3>> triangulate_piece(const SectionPiece& piece) {
+  CDT cdt;
+  int base = 0;
+  for (const auto& loop : piece.loops) {
+    std::vector<CDT::Vertex_handle> vh;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      vh.push_back(cdt.insert(CDT::Point(loop[i].x(), loop[i].y())));
+      vh.back()->info() = base + static_cast<int>(i);
+    }
+    for (std::size_t i = 0; i < vh.size(); ++i) cdt.insert_constraint(vh[i], vh[(i + 1) % vh.size()]);
+    base += static_cast<int>(loop.size());
+  }
+  mark_domains(cdt);
+  std::vector<std::array<int, 3>> tris;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+    if (f->info().nesting % 2 == 1)
+      tris.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+  return tris;
+}
+
+std::vector<ZonePrimitives> build_cylinders(const Partition& part, const CylinderOptions& opt) {
+  const ZoneGrid& g = part.grid;
+  std::vector<PieceCache> cache(part.pieces.size());
+  for (std::size_t i = 0; i < part.pieces.size(); ++i) {
+    const SectionPiece& p = part.pieces[i];
+    PieceCache& pc = cache[i];
+    for (const auto& loop : p.loops) {
+      const int b = static_cast<int>(pc.points.size());
+      pc.points.insert(pc.points.end(), loop.begin(), loop.end());
+      pc.loop_range.push_back({b, static_cast<int>(pc.points.size())});
+    }
+    pc.tris = triangulate_piece(p);
+  }
+
+  std::vector<ZonePrimitives> out(part.zones.size());
+  for (std::size_t zi = 0; zi < part.zones.size(); ++zi) {
+    const Zone& z = part.zones[zi];
+    if (z.type == ZoneType::kEmpty) continue;
+    for (int f = 0; f < 6; ++f) {
+      const int k = f / 2;
+      const double dir = f % 2 == 0 ? 1.0 : -1.0;  // into the zone
+      for (int pid : z.face_pieces[uz(f)]) {
+        const SectionPiece& piece = part.pieces[uz(pid)];
+        const PieceCache& pc = cache[uz(pid)];
+        const double c0 = f % 2 == 0 ? z.min[k] : z.max[k];
+        if (z.type == ZoneType::kBody) {
+          // === Body zone: Eq. 4.1 with the 4.3 perturbation.
+          const double h = z.extent(k) * (1.0 - opt.height_margin);
+          out[zi].solids.push_back(prism(pc, k, c0, c0 + dir * h, perturbed_top(pc, piece, z, opt)));
+          continue;
+        }
+        // === End zone: stretch across empty zones (4.4), one segment per zone.
+        std::array<int, 3> cell = z.cell;
+        double bottom = c0;
+        const int far_face = 2 * k + (f % 2 == 0 ? 1 : 0);
+        for (bool first = true;; first = false) {
+          const std::size_t id = uz(g.index(cell));
+          const Zone& zz = part.zones[id];
+          const bool last = zz.on_box[uz(far_face)] || (!first && zz.type != ZoneType::kEmpty);
+          if (last) {
+            const double h = zz.extent(k) * (1.0 - opt.height_margin);
+            out[id].solids.push_back(prism(pc, k, bottom, bottom + dir * h, perturbed_top(pc, piece, zz, opt)));
+            break;
+          }
+          const double top = f % 2 == 0 ? zz.max[k] : zz.min[k];
+          out[id].solids.push_back(prism(pc, k, bottom, top, pc.points));
+          bottom = top;
+          cell[uz(k)] += f % 2 == 0 ? 1 : -1;
+        }
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace ps

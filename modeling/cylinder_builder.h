@@ -1,0 +1,46 @@
+#pragma once
+// Primitives of the orthogonal reconstruction (thesis 4.3 and 4.4): one cylinder (prism) per
+// section piece per adjacent non-empty zone, its bottom the piece on the zone face and its top the
+// bottom translated into the zone.
+//
+//   Body zone (4.3, Eq. 4.1): height h_p = h_zn - eps with eps = height_margin * h_zn. The top's
+//   points lying on a side face of the zone that holds a section there are pulled into the zone
+//   by perturb * (the zone's extent across that face), so no wall of the prism lies in a face
+//   carrying another section (this lets the union interpolate that section). The pull is halved
+//   until every top cap triangle keeps its orientation.
+//   End zone (4.4): the prism is stretched through the zone across the face opposite its section
+//   and continued through the following zones along the same axis while they are empty; it stops
+//   with Eq. 4.1 in the first non-empty zone, or in the zone whose far face is the bounding box.
+//   Each zone gets its own segment of the stretched prism (full height where it passes through),
+//   so zones stay independent. Walls of a piece clipped by a plane carrying no section there
+//   stay in that plane; the stitching merges them with the neighbour zone.
+//
+// Holes: a piece with holes gives a prism with inner walls. Caps are constrained Delaunay
+// triangulations of the piece (no Steiner points), computed once per piece, so the two zones
+// sharing a piece get identical cap triangles.
+//
+// Every primitive is a closed, outward-oriented triangle mesh.
+#include <vector>
+
+#include "modeling/mesh.h"
+#include "modeling/zone_partition.h"
+
+namespace ps {
+
+struct CylinderOptions {
+  double height_margin = 0.05;  // eps of Eq. 4.1 as a fraction of the zone height
+  double perturb = 0.02;        // pull of top points off neighbour faces (fraction of zone size)
+};
+
+struct ZonePrimitives {
+  std::vector<TriMesh> solids;  // in a fixed order (zone's own faces, then incoming extensions)
+};
+
+// Cap triangulation of a piece: indices into the concatenation of piece.loops, counter-clockwise
+// in the plane's 2D frame.
+std::vector<std::array<int, 3>> triangulate_piece(const SectionPiece& piece);
+
+// Primitives per zone (indexed like Partition::zones).
+std::vector<ZonePrimitives> build_cylinders(const Partition& partition, const CylinderOptions& options = {});
+
+}  // namespace ps

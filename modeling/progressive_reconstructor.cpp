@@ -1,0 +1,352 @@
+// The reconstruction pipeline (thesis 4.2-4.5): validate, partition, cylinders, per-zone union
+// (parallel over zones with TBB, cached), stitch, curve flags, improvement hook.
+#include "modeling/progressive_reconstructor.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <tuple>
+
+#include "modeling/cylinder_builder.h"
+#include "modeling/mesh_topology.h"
+#include "modeling/section_validate.h"
+#include "modeling/zone_partition.h"
+#include "modeling/zone_stitch.h"
+#include "modeling/zone_union.h"
+
+namespace ps {
+namespace {
+
+std::size_t uz(int i) { return static_cast<std::size_t>(i); }
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+ImproveHook g_improve_hook = nullptr;
+constexpr double kSewTolerance = 0.02;
+
+// === Canonical order of planes and curves (order independence, thesis 4.1 requirement 3).
+SectionSet canonical_sections(const SectionSet& s) {
+  auto plane_key = [](const Plane& p) { return std::make_tuple(p.normal.x(), p.normal.y(), p.normal.z(), p.offset); };
+  std::vector<int> used_planes;
+  for (const auto& c : s.curves)
+    if (std::find(used_planes.begin(), used_planes.end(), c.plane) == used_planes.end()) used_planes.push_back(c.plane);
+  std::sort(used_planes.begin(), used_planes.end(), [&](int a, int b) {
+    return plane_key(s.planes[uz(a)]) < plane_key(s.planes[uz(b)]);
+  });
+  SectionSet out;
+  out.units = s.units;
+  std::vector<int> new_index(s.planes.size(), -1);
+  for (int p : used_planes) {
+    new_index[uz(p)] = static_cast<int>(out.planes.size());
+    out.planes.push_back(s.planes[uz(p)]);
+  }
+  out.curves = s.curves;
+  for (auto& c : out.curves) c.plane = new_index[uz(c.plane)];
+  auto less_points = [](const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), [](const Vec3& p, const Vec3& q) {
+      return std::make_tuple(p.x(), p.y(), p.z()) < std::make_tuple(q.x(), q.y(), q.z());
+    });
+  };
+  std::sort(out.curves.begin(), out.curves.end(), [&](const CrossSection& a, const CrossSection& b) {
+    if (a.plane != b.plane) return a.plane < b.plane;
+    return less_points(a.points, b.points);
+  });
+  return out;
+}
+
+std::uint64_t hash_meshes(const std::vector<TriMesh>& ms) {
+  std::uint64_t h = 1469598103934665603ULL;
+  auto mix = [&](const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ULL;
+  };
+  for (const auto& m : ms) {
+    for (const auto& v : m.vertices) mix(v.data(), sizeof(double) * 3);
+    for (const auto& f : m.faces) mix(f.data(), sizeof(int) * 3);
+    const std::size_t n = m.faces.size();
+    mix(&n, sizeof n);
+  }
+  return h;
+}
+
+bool same_meshes(const std::vector<TriMesh>& a, const std::vector<TriMesh>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].vertices != b[i].vertices || a[i].faces != b[i].faces) return false;
+  return true;
+}
+
+// === Curve vertices and edges (for the improvement step)
+double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 d = b - a;
+  const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+  return (a + t * d - p).norm();
+}
+
+void curve_flags(const TriMesh& m, const SectionSet& s, double tol, std::vector<bool>& on_curve,
+                 std::vector<std::array<int, 2>>& edges) {
+  on_curve.assign(m.vertices.size(), false);
+  std::vector<std::vector<int>> curves_of(m.vertices.size());
+  for (std::size_t ci = 0; ci < s.curves.size(); ++ci) {
+    const auto& c = s.curves[ci];
+    const Plane& pl = s.planes[uz(c.plane)];
+    Box3 b = bounding_box(c.points);
+    b.min -= Vec3::Constant(tol);
+    b.max += Vec3::Constant(tol);
+    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+      const Vec3& p = m.vertices[v];
+      if ((p.array() < b.min.array()).any() || (p.array() > b.max.array()).any()) continue;
+      if (std::abs(pl.signed_distance(p)) > tol) continue;
+      for (std::size_t j = 0; j < c.points.size(); ++j)
+        if (segment_distance(p, c.points[j], c.points[(j + 1) % c.points.size()]) <= tol) {
+          on_curve[v] = true;
+          curves_of[v].push_back(static_cast<int>(ci));
+          break;
+        }
+    }
+  }
+  std::vector<std::array<int, 2>> all;
+  for (const auto& f : m.faces)
+    for (int i = 0; i < 3; ++i) {
+      int a = f[uz(i)], b = f[uz((i + 1) % 3)];
+      if (a > b) std::swap(a, b);
+      if (on_curve[uz(a)] && on_curve[uz(b)]) all.push_back({a, b});
+    }
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  for (const auto& e : all) {
+    const Vec3 mid = 0.5 * (m.vertices[uz(e[0])] + m.vertices[uz(e[1])]);
+    bool along = false;
+    for (int ci : curves_of[uz(e[0])]) {
+      if (std::find(curves_of[uz(e[1])].begin(), curves_of[uz(e[1])].end(), ci) == curves_of[uz(e[1])].end()) continue;
+      const auto& c = s.curves[uz(ci)];
+      for (std::size_t j = 0; j < c.points.size() && !along; ++j)
+        along = segment_distance(mid, c.points[j], c.points[(j + 1) % c.points.size()]) <= tol;
+      if (along) break;
+    }
+    if (along) edges.push_back(e);
+  }
+}
+
+}  // namespace
+
+void set_improve_hook(ImproveHook hook) { g_improve_hook = hook; }
+ImproveHook improve_hook() { return g_improve_hook; }
+
+ProgressiveReconstructor::ProgressiveReconstructor(ReconstructOptions options) : options_(std::move(options)) {}
+
+void ProgressiveReconstructor::set_box(const Box3& box) {
+  box_ = box;
+  box_fixed_ = !box.empty();
+  cache_.clear();
+}
+
+void ProgressiveReconstructor::clear() {
+  sections_ = SectionSet{};
+  mesh_ = TriMesh{};
+  box_ = Box3{};
+  box_fixed_ = false;
+  cache_.clear();
+}
+
+Result<TriMesh> ProgressiveReconstructor::add(const Plane& plane, const std::vector<Vec3>& curve,
+                                              ReconstructReport* report) {
+  SectionSet s = sections_;
+  s.planes.push_back(plane);
+  s.curves.push_back(CrossSection{static_cast<int>(s.planes.size()) - 1, curve});
+  return update(s, report);
+}
+
+Result<TriMesh> ProgressiveReconstructor::replace(int curve, const std::vector<Vec3>& points,
+                                                  ReconstructReport* report) {
+  if (curve < 0 || uz(curve) >= sections_.curves.size())
+    return Result<TriMesh>::error("curve " + std::to_string(curve) + " does not exist");
+  SectionSet s = sections_;
+  s.curves[uz(curve)].points = points;
+  return update(s, report);
+}
+
+Result<TriMesh> ProgressiveReconstructor::remove(int curve, ReconstructReport* report) {
+  if (curve < 0 || uz(curve) >= sections_.curves.size())
+    return Result<TriMesh>::error("curve " + std::to_string(curve) + " does not exist");
+  SectionSet s = sections_;
+  s.curves.erase(s.curves.begin() + curve);
+  if (s.curves.empty()) {
+    sections_ = s;
+    mesh_ = TriMesh{};
+    return mesh_;
+  }
+  return update(s, report);
+}
+
+Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, ReconstructReport* report) {
+  const auto t_total = Clock::now();
+  ReconstructReport rep;
+  auto progress = [&](const char* stage, double f) {
+    if (options_.progress) options_.progress(stage, f);
+  };
+
+  // === Validate (messages name the caller's curve indices), then canonicalise.
+  auto t = Clock::now();
+  auto checked = validate_sections(input);
+  if (!checked) return checked.status();
+  SectionSet canonical = canonical_sections(checked->sections);
+  // Rule 4: crossing points of curves on perpendicular planes closer than 2% of the diagonal
+  // become one shared vertex (the stitching of zones needs them to agree exactly).
+  rep.warnings = checked->warnings;
+  sew_crossings(canonical, kSewTolerance * checked->diagonal, &rep.warnings);
+  auto valid = validate_sections(canonical);
+  if (!valid) return Result<TriMesh>::error("after sewing crossing points (rule 4): " + valid.message());
+  const SectionSet& s = valid->sections;
+  for (std::size_t i = 0; i < s.planes.size(); ++i)
+    if (s.planes[i].axis() < 0)
+      return Result<TriMesh>::error("plane with normal (" + std::to_string(s.planes[i].normal.x()) + ", " +
+                                    std::to_string(s.planes[i].normal.y()) + ", " +
+                                    std::to_string(s.planes[i].normal.z()) +
+                                    ") is not an axis plane; only orthogonal sections are reconstructed");
+  rep.timings.validate_ms = ms_since(t);
+  progress("validate", 1.0);
+
+  // === Box (fixed while sketching unless a point leaves it) and partition.
+  t = Clock::now();
+  const std::vector<Vec3> points = s.all_points();
+  Box3 box = box_;
+  bool inside = box_fixed_;
+  if (inside) {
+    for (const auto& p : points)
+      if ((p.array() <= box.min.array()).any() || (p.array() >= box.max.array()).any()) {
+        inside = false;
+        break;
+      }
+  }
+  if (!inside) box = default_reconstruction_box(points);
+  auto part = partition_zones(*valid, box);
+  if (!part) return part.status();
+  rep.zones = static_cast<int>(part->zones.size());
+  rep.empty_zones = part->count(ZoneType::kEmpty);
+  rep.end_zones = part->count(ZoneType::kEnd);
+  rep.body_zones = part->count(ZoneType::kBody);
+  rep.timings.partition_ms = ms_since(t);
+  progress("partition", 1.0);
+
+  // === Primitives
+  t = Clock::now();
+  const std::vector<ZonePrimitives> prims = build_cylinders(*part);
+  for (const auto& z : prims) rep.primitives += static_cast<int>(z.solids.size());
+  rep.timings.primitives_ms = ms_since(t);
+  progress("primitives", 1.0);
+
+  // === Per-zone unions: cached, the rest in parallel; merged in zone order.
+  t = Clock::now();
+  std::vector<TriMesh> solids(prims.size());
+  std::vector<std::uint64_t> keys(prims.size(), 0);
+  std::vector<int> todo;
+  for (std::size_t z = 0; z < prims.size(); ++z) {
+    if (prims[z].solids.empty()) continue;
+    keys[z] = hash_meshes(prims[z].solids);
+    bool hit = false;
+    for (auto [it, end] = cache_.equal_range(keys[z]); it != end; ++it)
+      if (same_meshes(it->second.primitives, prims[z].solids)) {
+        solids[z] = it->second.solid;
+        hit = true;
+        break;
+      }
+    if (!hit) todo.push_back(static_cast<int>(z));
+  }
+  std::vector<std::string> errors(todo.size());
+  std::atomic<int> done{0};
+  tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        const std::size_t z = uz(todo[i]);
+        auto u = union_solids(prims[z].solids);
+        if (u) {
+          solids[z] = std::move(*u);
+          canonicalize(solids[z]);
+        }
+        else
+          errors[i] = "zone " + std::to_string(z) + ": " + u.message();
+        ++done;
+      }
+    });
+  });
+  for (const auto& e : errors)
+    if (!e.empty()) return Result<TriMesh>::error("reconstruction failed: " + e);
+  rep.zones_recomputed = static_cast<int>(todo.size());
+  rep.timings.union_ms = ms_since(t);
+  progress("union", 1.0);
+
+  // === Stitch
+  t = Clock::now();
+  const double diag = box.diagonal();
+  const double tol = 1e-10 * diag;
+  TriMesh mesh = stitch_zones(*part, solids, tol);
+  const MeshTopology topo = mesh_topology(mesh);
+  if (!topo.closed || !topo.manifold())
+    return Result<TriMesh>::error("reconstruction failed: the stitched surface is not a closed 2-manifold (" +
+                                  topo.problem + ")");
+  if (!(topo.signed_volume > 0.0))
+    return Result<TriMesh>::error("reconstruction failed: the stitched surface is inside out");
+  rep.components = topo.components;
+  if (topo.components > 1)
+    rep.warnings.push_back("result has " + std::to_string(topo.components) +
+                           " components; a new section near the separate parts may join them");
+  curve_flags(mesh, s, 1e-9 * diag, rep.curve_vertex, rep.curve_edges);
+  rep.timings.stitch_ms = ms_since(t);
+  progress("stitch", 1.0);
+
+  // === Improvement (4.5.1), through the hook.
+  if (options_.improve) {
+    t = Clock::now();
+    if (g_improve_hook) {
+      ImproveOptions io;
+      io.iterations = options_.improve_iterations;
+      auto improved = g_improve_hook(mesh, rep.curve_vertex, rep.curve_edges, io, nullptr);
+      if (improved) {
+        mesh = std::move(*improved);
+        rep.improved = true;
+        if (mesh.vertices.size() != rep.curve_vertex.size()) {
+          rep.curve_vertex.clear();
+          rep.curve_edges.clear();
+          curve_flags(mesh, s, 1e-9 * diag, rep.curve_vertex, rep.curve_edges);
+        }
+      } else {
+        rep.warnings.push_back("mesh improvement failed, initial mesh kept: " + improved.message());
+      }
+    } else {
+      rep.warnings.push_back("mesh improvement unavailable");
+    }
+    rep.timings.improve_ms = ms_since(t);
+    progress("improve", 1.0);
+  }
+
+  // === Commit state
+  std::multimap<std::uint64_t, CacheEntry> cache;
+  for (std::size_t z = 0; z < prims.size(); ++z)
+    if (!prims[z].solids.empty()) cache.emplace(keys[z], CacheEntry{prims[z].solids, solids[z]});
+  cache_ = std::move(cache);
+  box_ = box;
+  box_fixed_ = true;
+  sections_ = input;
+  mesh_ = mesh;
+  rep.timings.total_ms = ms_since(t_total);
+  if (report) *report = std::move(rep);
+  return mesh;
+}
+
+// === One-shot
+Result<TriMesh> reconstruct(const SectionSet& sections, const ReconstructOptions& options, ReconstructReport* report) {
+  ProgressiveReconstructor r(options);
+  return r.update(sections, report);
+}
+
+}  // namespace ps

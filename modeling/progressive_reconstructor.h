@@ -1,0 +1,58 @@
+#pragma once
+// Progressive reconstruction (thesis 4.6): the sketching session's stateful reconstructor.
+//
+// It keeps the bounding box fixed while sketching (the box is set by the first update and
+// replaced only when a point leaves it) and caches the union solid of every zone, keyed by the
+// zone's primitives (which encode the zone's geometry and every section and extension touching
+// it). Adding, editing or deleting a section therefore recomputes only the unions of the zones
+// whose primitives changed; the stitching of zones is redone (it is linear in the surface size).
+//
+// Order independence: curves are sorted canonically before anything else and zones are merged
+// in zone order, so the same set of sections gives the bit-identical mesh whatever order they
+// were added in (given the same box).
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "modeling/cross_section.h"
+#include "modeling/mesh.h"
+#include "modeling/reconstruct.h"
+#include "modeling/status.h"
+
+namespace ps {
+
+class ProgressiveReconstructor {
+ public:
+  explicit ProgressiveReconstructor(ReconstructOptions options = {});
+
+  // Reconstructs the whole current set. On error the previous state (box, cache, last mesh) is
+  // unchanged.
+  Result<TriMesh> update(const SectionSet& sections, ReconstructReport* report = nullptr);
+
+  // Editing helpers on the reconstructor's own copy of the set (each calls update()).
+  Result<TriMesh> add(const Plane& plane, const std::vector<Vec3>& curve, ReconstructReport* report = nullptr);
+  Result<TriMesh> replace(int curve, const std::vector<Vec3>& points, ReconstructReport* report = nullptr);
+  Result<TriMesh> remove(int curve, ReconstructReport* report = nullptr);
+
+  const SectionSet& sections() const { return sections_; }
+  const TriMesh& mesh() const { return mesh_; }
+  const Box3& box() const { return box_; }
+  // Fix the box explicitly (e.g. the app's drawing volume). Clears the cache.
+  void set_box(const Box3& box);
+  void clear();
+
+ private:
+  struct CacheEntry {
+    std::vector<TriMesh> primitives;
+    TriMesh solid;
+  };
+  ReconstructOptions options_;
+  SectionSet sections_;
+  TriMesh mesh_;
+  Box3 box_;
+  bool box_fixed_ = false;
+  std::multimap<std::uint64_t, CacheEntry> cache_;
+};
+
+}  // namespace ps

@@ -1,0 +1,178 @@
+// Zone partition (thesis 4.2). The clipping of section regions (with holes and concavities) to
+// zone face rectangles uses CGAL's 2D Boolean set operations on an exact kernel, so crossing
+// points are computed exactly once and rounded the same way for both zones sharing the face.
+#include "modeling/zone_partition.h"
+
+#include <CGAL/Boolean_set_operations_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Polygon_2.h>
+#include <CGAL/Polygon_with_holes_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+namespace ps {
+namespace {
+
+using EK = CGAL::Exact_predicates_exact_constructions_kernel;
+using EPoint = EK::Point_2;
+using EPolygon = CGAL::Polygon_2<EK>;
+using EPwh = CGAL::Polygon_with_holes_2<EK>;
+
+std::size_t uz(int i) { return static_cast<std::size_t>(i); }
+
+EPolygon to_exact(const std::vector<Vec2>& loop, bool ccw) {
+  EPolygon p;
+  for (const auto& q : loop) p.push_back(EPoint(q.x(), q.y()));
+  if (p.is_counterclockwise_oriented() != ccw) p.reverse_orientation();
+  return p;
+}
+
+std::vector<Vec2> to_double(const EPolygon& p) {
+  std::vector<Vec2> out;
+  out.reserve(p.size());
+  for (auto it = p.vertices_begin(); it != p.vertices_end(); ++it)
+    out.emplace_back(CGAL::to_double(it->x()), CGAL::to_double(it->y()));
+  return out;
+}
+
+// Index of the grid cell containing [lo, hi] along one axis range (first cell overlapping).
+int first_cell(const std::vector<double>& c, double lo) {
+  const auto it = std::upper_bound(c.begin(), c.end(), lo);
+  return std::max(0, static_cast<int>(it - c.begin()) - 1);
+}
+
+}  // namespace
+
+int Partition::count(ZoneType t) const {
+  return static_cast<int>(std::count_if(zones.begin(), zones.end(), [&](const Zone& z) { return z.type == t; }));
+}
+
+Box3 default_reconstruction_box(const std::vector<Vec3>& points) {
+  const Box3 b = bounding_box(points);
+  Box3 out;
+  if (b.empty()) return out;
+  const Vec3 c = b.center();
+  const double largest = std::max(b.size().maxCoeff(), 1e-12);
+  for (int k = 0; k < 3; ++k) {
+    const double half = std::max(b.size()[k], 0.5 * largest);
+    out.min[k] = c[k] - half;
+    out.max[k] = c[k] + half;
+  }
+  return out;
+}
+
+Result<Partition> partition_zones(const ValidatedSections& vs, const Box3& box) {
+  const SectionSet& s = vs.sections;
+  Partition part;
+  part.grid.box = box;
+
+  // === Grid: the sorted distinct coordinates of planes holding sections, per axis.
+  std::vector<char> plane_used(s.planes.size(), 0);
+  for (const auto& c : s.curves) plane_used[uz(c.plane)] = 1;
+  for (std::size_t i = 0; i < s.planes.size(); ++i) {
+    if (!plane_used[i]) continue;
+    const int k = s.planes[i].axis();
+    if (k < 0 || s.planes[i].normal[k] < 0.0)
+      return Result<Partition>::error("plane " + std::to_string(i) + " is not an axis plane; the orthogonal partition needs axis planes");
+    const double c = s.planes[i].offset;
+    if (!(c > box.min[k] && c < box.max[k]))
+      return Result<Partition>::error("plane " + std::to_string(i) + " lies outside the reconstruction box");
+    part.grid.coords[uz(k)].push_back(c);
+  }
+  for (int k = 0; k < 3; ++k) {
+    auto& c = part.grid.coords[uz(k)];
+    c.push_back(box.min[k]);
+    c.push_back(box.max[k]);
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+  }
+  const ZoneGrid& g = part.grid;
+
+  // === Zones
+  part.zones.resize(uz(g.size()));
+  for (int k2 = 0; k2 < g.cells(2); ++k2)
+    for (int k1 = 0; k1 < g.cells(1); ++k1)
+      for (int k0 = 0; k0 < g.cells(0); ++k0) {
+        const std::array<int, 3> cell{k0, k1, k2};
+        Zone& z = part.zones[uz(g.index(cell))];
+        z.cell = cell;
+        for (int a = 0; a < 3; ++a) {
+          const auto& c = g.coords[uz(a)];
+          z.min[a] = c[uz(cell[uz(a)])];
+          z.max[a] = c[uz(cell[uz(a)] + 1)];
+          z.on_box[uz(2 * a)] = cell[uz(a)] == 0;
+          z.on_box[uz(2 * a + 1)] = cell[uz(a)] + 1 == g.cells(a);
+          z.half_spaces[uz(2 * a)] = HalfSpace{-Vec3::Unit(a), -z.min[a]};
+          z.half_spaces[uz(2 * a + 1)] = HalfSpace{Vec3::Unit(a), z.max[a]};
+        }
+      }
+
+  // === Pieces: each region clipped to every face rectangle of its plane it overlaps.
+  for (std::size_t ri = 0; ri < vs.regions.size(); ++ri) {
+    const SectionRegion& r = vs.regions[ri];
+    const Plane& pl = s.planes[uz(r.plane)];
+    const PlaneFrame fr = plane_frame(pl);
+    const int k = pl.axis();
+    const int au = (k + 1) % 3, av = (k + 2) % 3;
+    const auto& cu = g.coords[uz(au)];
+    const auto& cv = g.coords[uz(av)];
+    const int layer = static_cast<int>(std::lower_bound(g.coords[uz(k)].begin(), g.coords[uz(k)].end(), pl.offset) -
+                                       g.coords[uz(k)].begin());
+    std::vector<Vec2> outer;
+    for (const auto& p : s.curves[uz(r.outer)].points) outer.push_back(fr.to_2d(p));
+    EPwh region(to_exact(outer, true));
+    for (int h : r.holes) {
+      std::vector<Vec2> hole;
+      for (const auto& p : s.curves[uz(h)].points) hole.push_back(fr.to_2d(p));
+      region.add_hole(to_exact(hole, false));
+    }
+    double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;
+    for (const auto& q : outer) {
+      u0 = std::min(u0, q.x()); u1 = std::max(u1, q.x());
+      v0 = std::min(v0, q.y()); v1 = std::max(v1, q.y());
+    }
+    for (int a = first_cell(cu, u0); a < static_cast<int>(cu.size()) - 1 && cu[uz(a)] < u1; ++a) {
+      for (int b = first_cell(cv, v0); b < static_cast<int>(cv.size()) - 1 && cv[uz(b)] < v1; ++b) {
+        EPolygon rect;
+        rect.push_back(EPoint(cu[uz(a)], cv[uz(b)]));
+        rect.push_back(EPoint(cu[uz(a + 1)], cv[uz(b)]));
+        rect.push_back(EPoint(cu[uz(a + 1)], cv[uz(b + 1)]));
+        rect.push_back(EPoint(cu[uz(a)], cv[uz(b + 1)]));
+        std::vector<EPwh> clipped;
+        CGAL::intersection(region, rect, std::back_inserter(clipped));
+        for (const auto& c : clipped) {
+          SectionPiece piece;
+          piece.plane = r.plane;
+          piece.axis = k;
+          piece.layer = layer;
+          piece.cell = {a, b};
+          piece.loops.push_back(to_double(c.outer_boundary()));
+          for (auto h = c.holes_begin(); h != c.holes_end(); ++h) piece.loops.push_back(to_double(*h));
+          const int id = static_cast<int>(part.pieces.size());
+          part.pieces.push_back(std::move(piece));
+          // The piece lies on the max face of the zone below the plane and the min face of the
+          // zone above it.
+          std::array<int, 3> cell{};
+          cell[uz(k)] = layer - 1;
+          cell[uz(au)] = a;
+          cell[uz(av)] = b;
+          part.zones[uz(g.index(cell))].face_pieces[uz(2 * k + 1)].push_back(id);
+          cell[uz(k)] = layer;
+          part.zones[uz(g.index(cell))].face_pieces[uz(2 * k)].push_back(id);
+        }
+      }
+    }
+  }
+
+  // === Classification
+  for (auto& z : part.zones) {
+    int faces = 0;
+    for (int f = 0; f < 6; ++f) faces += z.face_has_section(f) ? 1 : 0;
+    z.type = faces == 0 ? ZoneType::kEmpty : faces == 1 ? ZoneType::kEnd : ZoneType::kBody;
+  }
+  return part;
+}
+
+}  // namespace ps

@@ -1,0 +1,317 @@
+// Stitching of zone solids: cap XOR per internal face (CGAL constrained Delaunay triangulation
+// with exact predicates), welding and T-junction removal (hand-written: plain index bookkeeping
+// on a soup, which no CGAL function does on a soup with tolerance).
+#include "modeling/zone_stitch.h"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <tuple>
+#include <unordered_map>
+
+namespace ps {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, CGAL::Default, CGAL::Exact_predicates_tag>;
+
+std::size_t uz(int i) { return static_cast<std::size_t>(i); }
+
+using Tri2 = std::array<Vec2, 3>;
+
+struct FaceBucket {
+  int axis = 0;
+  double coord = 0.0;
+  std::vector<Tri2> below, above;  // caps of the zone below (normal +e_axis) and above (-e_axis)
+};
+
+double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+bool in_triangle(const Tri2& t, const Vec2& p) {
+  const double s = orient(t[0], t[1], t[2]);
+  const double a = orient(t[0], t[1], p), b = orient(t[1], t[2], p), c = orient(t[2], t[0], p);
+  if (s > 0) return a > 0 && b > 0 && c > 0;
+  return a < 0 && b < 0 && c < 0;
+}
+
+Vec3 lift(int k, double coord, const Vec2& q) {
+  Vec3 p;
+  p[k] = coord;
+  p[(k + 1) % 3] = q.x();
+  p[(k + 2) % 3] = q.y();
+  return p;
+}
+
+std::vector<std::array<double, 6>> canonical(const std::vector<Tri2>& tris) {
+  std::vector<std::array<double, 6>> out;
+  out.reserve(tris.size());
+  for (const auto& t : tris) {
+    std::array<std::pair<double, double>, 3> v{{{t[0].x(), t[0].y()}, {t[1].x(), t[1].y()}, {t[2].x(), t[2].y()}}};
+    std::sort(v.begin(), v.end());
+    out.push_back({v[0].first, v[0].second, v[1].first, v[1].second, v[2].first, v[2].second});
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Triangles of (below XOR above), oriented outward, appended to `out` as 3D triangles.
+int cap_xor(const FaceBucket& b, std::vector<std::array<Vec3, 3>>& out) {
+  if (canonical(b.below) == canonical(b.above)) return 0;
+  CDT cdt;
+  auto add = [&](const std::vector<Tri2>& tris) {
+    for (const auto& t : tris)
+      for (int i = 0; i < 3; ++i) {
+        const Vec2& p = t[uz(i)];
+        const Vec2& q = t[uz((i + 1) % 3)];
+        cdt.insert_constraint(CDT::Point(p.x(), p.y()), CDT::Point(q.x(), q.y()));
+      }
+  };
+  add(b.below);
+  add(b.above);
+  int kept = 0;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    Tri2 t;
+    for (int i = 0; i < 3; ++i) t[uz(i)] = Vec2(f->vertex(i)->point().x(), f->vertex(i)->point().y());
+    const Vec2 c = (t[0] + t[1] + t[2]) / 3.0;
+    bool in_below = false, in_above = false;
+    for (const auto& q : b.below)
+      if (in_triangle(q, c)) {
+        in_below = true;
+        break;
+      }
+    for (const auto& q : b.above)
+      if (in_triangle(q, c)) {
+        in_above = true;
+        break;
+      }
+    if (in_below == in_above) continue;
+    // CDT faces are counter-clockwise in (u, v), i.e. normal +e_axis: right for the zone below.
+    std::array<Vec3, 3> tri{lift(b.axis, b.coord, t[0]), lift(b.axis, b.coord, t[1]), lift(b.axis, b.coord, t[2])};
+    if (in_above) std::swap(tri[1], tri[2]);
+    out.push_back(tri);
+    ++kept;
+  }
+  return kept;
+}
+
+struct CellKey {
+  std::int64_t x, y, z;
+  bool operator==(const CellKey& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+struct CellHash {
+  std::size_t operator()(const CellKey& k) const {
+    return static_cast<std::size_t>(k.x * 73856093LL ^ k.y * 19349663LL ^ k.z * 83492791LL);
+  }
+};
+CellKey cell_of(const Vec3& p, double h) {
+  return {static_cast<std::int64_t>(std::floor(p.x() / h)), static_cast<std::int64_t>(std::floor(p.y() / h)),
+          static_cast<std::int64_t>(std::floor(p.z() / h))};
+}
+
+std::uint64_t edge_key(int a, int b) {
+  const auto lo = static_cast<std::uint64_t>(std::min(a, b)), hi = static_cast<std::uint64_t>(std::max(a, b));
+  return lo << 32 | hi;
+}
+
+// Splits faces at vertices lying inside their boundary edges; returns the number of splits.
+int split_t_junctions(TriMesh& m, double tol) {
+  int total = 0;
+  for (int pass = 0; pass < 4; ++pass) {
+    std::unordered_map<std::uint64_t, int> count;
+    for (const auto& f : m.faces)
+      for (int i = 0; i < 3; ++i) ++count[edge_key(f[uz(i)], f[uz((i + 1) % 3)])];
+    std::vector<char> boundary_vertex(m.vertices.size(), 0);
+    std::vector<std::array<int, 3>> bedges;  // face, corner i (edge i -> i+1)
+    for (std::size_t fi = 0; fi < m.faces.size(); ++fi)
+      for (int i = 0; i < 3; ++i) {
+        const int a = m.faces[fi][uz(i)], b = m.faces[fi][uz((i + 1) % 3)];
+        if (count[edge_key(a, b)] == 1) {
+          bedges.push_back({static_cast<int>(fi), i, 0});
+          boundary_vertex[uz(a)] = boundary_vertex[uz(b)] = 1;
+        }
+      }
+    if (bedges.empty()) break;
+    double mean = 0.0;
+    for (const auto& e : bedges) {
+      const auto& f = m.faces[uz(e[0])];
+      mean += (m.vertices[uz(f[uz(e[1])])] - m.vertices[uz(f[uz((e[1] + 1) % 3)])]).norm();
+    }
+    const double h = std::max(mean / static_cast<double>(bedges.size()), 100.0 * tol);
+    std::unordered_map<CellKey, std::vector<int>, CellHash> grid;
+    for (std::size_t v = 0; v < m.vertices.size(); ++v)
+      if (boundary_vertex[v]) grid[cell_of(m.vertices[v], h)].push_back(static_cast<int>(v));
+    std::map<int, std::vector<std::pair<int, std::vector<std::pair<double, int>>>>> splits;  // face -> (edge, points)
+    int found = 0;
+    for (const auto& e : bedges) {
+      const auto& f = m.faces[uz(e[0])];
+      const int a = f[uz(e[1])], b = f[uz((e[1] + 1) % 3)];
+      const Vec3 pa = m.vertices[uz(a)], pb = m.vertices[uz(b)];
+      const Vec3 d = pb - pa;
+      const double len2 = d.squaredNorm();
+      if (!(len2 > 0)) continue;
+      const CellKey lo = cell_of(pa.cwiseMin(pb) - Vec3::Constant(tol), h);
+      const CellKey hi = cell_of(pa.cwiseMax(pb) + Vec3::Constant(tol), h);
+      std::vector<std::pair<double, int>> on;
+      for (std::int64_t x = lo.x; x <= hi.x; ++x)
+        for (std::int64_t y = lo.y; y <= hi.y; ++y)
+          for (std::int64_t z = lo.z; z <= hi.z; ++z) {
+            const auto it = grid.find({x, y, z});
+            if (it == grid.end()) continue;
+            for (int v : it->second) {
+              if (v == a || v == b) continue;
+              const Vec3 p = m.vertices[uz(v)];
+              const double t = (p - pa).dot(d) / len2;
+              if (!(t > 0.0 && t < 1.0)) continue;
+              if ((pa + t * d - p).norm() > tol) continue;
+              if ((p - pa).norm() <= tol || (p - pb).norm() <= tol) continue;
+              on.emplace_back(t, v);
+            }
+          }
+      if (on.empty()) continue;
+      std::sort(on.begin(), on.end());
+      splits[e[0]].push_back({e[1], std::move(on)});
+      ++found;
+    }
+    if (found == 0) break;
+    total += found;
+    std::vector<Face> faces;
+    faces.reserve(m.faces.size() + static_cast<std::size_t>(found) * 2);
+    for (std::size_t fi = 0; fi < m.faces.size(); ++fi) {
+      const auto it = splits.find(static_cast<int>(fi));
+      if (it == splits.end()) {
+        faces.push_back(m.faces[fi]);
+        continue;
+      }
+      // Split along the first listed edge only; later passes handle the others.
+      const auto& [corner, pts] = it->second.front();
+      const Face f = m.faces[fi];
+      const int a = f[uz(corner)], b = f[uz((corner + 1) % 3)], c = f[uz((corner + 2) % 3)];
+      int prev = a;
+      for (const auto& [t, v] : pts) {
+        faces.push_back({prev, v, c});
+        prev = v;
+      }
+      faces.push_back({prev, b, c});
+    }
+    m.faces = std::move(faces);
+  }
+  return total;
+}
+
+}  // namespace
+
+TriMesh weld_vertices(const TriMesh& mesh, double tol) {
+  const double h = std::max(tol, 1e-300);
+  std::unordered_map<CellKey, std::vector<int>, CellHash> grid;
+  std::vector<int> map(mesh.vertices.size(), -1);
+  TriMesh out;
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+    const Vec3& p = mesh.vertices[v];
+    const CellKey c = cell_of(p, h);
+    int found = -1;
+    for (std::int64_t dx = -1; dx <= 1 && found < 0; ++dx)
+      for (std::int64_t dy = -1; dy <= 1 && found < 0; ++dy)
+        for (std::int64_t dz = -1; dz <= 1 && found < 0; ++dz) {
+          const auto it = grid.find({c.x + dx, c.y + dy, c.z + dz});
+          if (it == grid.end()) continue;
+          for (int r : it->second)
+            if ((out.vertices[uz(r)] - p).norm() <= tol) {
+              found = r;
+              break;
+            }
+        }
+    if (found < 0) {
+      found = static_cast<int>(out.vertices.size());
+      out.vertices.push_back(p);
+      grid[c].push_back(found);
+    }
+    map[v] = found;
+  }
+  for (const auto& f : mesh.faces) {
+    const Face g{map[uz(f[0])], map[uz(f[1])], map[uz(f[2])]};
+    if (g[0] == g[1] || g[1] == g[2] || g[0] == g[2]) continue;
+    out.faces.push_back(g);
+  }
+  return out;
+}
+
+void canonicalize(TriMesh& m) {
+  std::vector<int> order(m.vertices.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  auto key = [&](int i) {
+    const Vec3& p = m.vertices[uz(i)];
+    return std::make_tuple(p.x(), p.y(), p.z());
+  };
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+  std::vector<int> rank(order.size());
+  std::vector<Vec3> vertices(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    rank[uz(order[i])] = static_cast<int>(i);
+    vertices[i] = m.vertices[uz(order[i])];
+  }
+  for (auto& f : m.faces) {
+    Face g{rank[uz(f[0])], rank[uz(f[1])], rank[uz(f[2])]};
+    while (g[0] > g[1] || g[0] > g[2]) g = Face{g[1], g[2], g[0]};
+    f = g;
+  }
+  std::sort(m.faces.begin(), m.faces.end());
+  m.vertices = std::move(vertices);
+}
+
+TriMesh stitch_zones(const Partition& part, const std::vector<TriMesh>& solids, double tol, StitchReport* report) {
+  StitchReport rep;
+  std::map<std::array<int, 4>, FaceBucket> buckets;  // (axis, layer, cell_u, cell_v)
+  std::vector<std::array<Vec3, 3>> soup;
+  for (std::size_t zi = 0; zi < part.zones.size() && zi < solids.size(); ++zi) {
+    const Zone& z = part.zones[zi];
+    const TriMesh& s = solids[zi];
+    for (const auto& f : s.faces) {
+      const std::array<Vec3, 3> t{s.vertices[uz(f[0])], s.vertices[uz(f[1])], s.vertices[uz(f[2])]};
+      int face = -1;
+      for (int a = 0; a < 3 && face < 0; ++a) {
+        for (int side = 0; side < 2; ++side) {
+          const double c = side == 0 ? z.min[a] : z.max[a];
+          if (std::abs(t[0][a] - c) <= tol && std::abs(t[1][a] - c) <= tol && std::abs(t[2][a] - c) <= tol) {
+            face = 2 * a + side;
+            break;
+          }
+        }
+      }
+      if (face < 0 || z.on_box[uz(face)]) {
+        soup.push_back(t);
+        continue;
+      }
+      const int a = face / 2, side = face % 2;
+      const int layer = z.cell[uz(a)] + side;
+      FaceBucket& b = buckets[{a, layer, z.cell[uz((a + 1) % 3)], z.cell[uz((a + 2) % 3)]}];
+      b.axis = a;
+      b.coord = part.grid.coords[uz(a)][uz(layer)];
+      Tri2 t2{Vec2(t[0][(a + 1) % 3], t[0][(a + 2) % 3]), Vec2(t[1][(a + 1) % 3], t[1][(a + 2) % 3]),
+              Vec2(t[2][(a + 1) % 3], t[2][(a + 2) % 3])};
+      (side == 1 ? b.below : b.above).push_back(t2);
+      ++rep.face_triangles_removed;
+    }
+  }
+  for (const auto& [key, b] : buckets) rep.cap_triangles_kept += cap_xor(b, soup);
+
+  TriMesh m;
+  m.vertices.reserve(soup.size() * 3);
+  for (const auto& t : soup) {
+    const int base = static_cast<int>(m.vertices.size());
+    m.vertices.insert(m.vertices.end(), t.begin(), t.end());
+    m.faces.push_back({base, base + 1, base + 2});
+  }
+  m = weld_vertices(m, tol);
+  rep.t_junctions_split = split_t_junctions(m, tol);
+  canonicalize(m);
+  if (report) *report = rep;
+  return m;
+}
+
+}  // namespace ps

@@ -1,0 +1,39 @@
+#pragma once
+// Stitching of per-zone solids into one closed surface (thesis 4.2: "stitch all the pieces of
+// sub-surfaces together").
+//
+// Each zone solid lies inside its zone. Its triangles lying in a zone face are cap material on
+// that face. For every internal face the material of the two zones sharing it is compared: where
+// both sides have material the face is interior and disappears; where only one side has it, that
+// side's cap is kept (Q_below XOR Q_above, triangulated by a constrained Delaunay triangulation of
+// both sides' cap edges). The remaining triangles are welded by position (tolerance `tol`) and
+// T-junctions are removed by splitting edges at vertices lying on them (corefinement may have
+// inserted a vertex on one side of a face boundary only).
+#include <vector>
+
+#include "modeling/mesh.h"
+#include "modeling/status.h"
+#include "modeling/zone_partition.h"
+
+namespace ps {
+
+struct StitchReport {
+  int face_triangles_removed = 0;
+  int cap_triangles_kept = 0;
+  int t_junctions_split = 0;
+};
+
+// zone_solids is indexed like partition.zones (empty meshes for zones without material).
+// The result may still be open if the zones do not match; the caller checks.
+TriMesh stitch_zones(const Partition& partition, const std::vector<TriMesh>& zone_solids, double tol,
+                     StitchReport* report = nullptr);
+
+// Welds vertices closer than tol (first occurrence wins, deterministic), drops faces that became
+// degenerate and unreferenced vertices.
+TriMesh weld_vertices(const TriMesh& mesh, double tol);
+
+// Canonical order: vertices sorted by (x, y, z), each face rotated to start at its smallest
+// index, faces sorted. Two meshes with the same triangles become bit-identical.
+void canonicalize(TriMesh& mesh);
+
+}  // namespace ps

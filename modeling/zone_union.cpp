@@ -1,0 +1,74 @@
+// Per-zone union by CGAL corefinement (replaces the thesis's Carve, Eq. 4.2).
+#include "modeling/zone_union.h"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <string>
+
+namespace ps {
+namespace {
+
+// Exact constructions: the sequential unions feed each result into the next one, and rounded
+// intersection points (Epick) made CGAL 5.5 crash in the coplanar-face code on zone corners
+// where three sections meet.
+using K = CGAL::Exact_predicates_exact_constructions_kernel;
+using SurfaceMesh = CGAL::Surface_mesh<K::Point_3>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+SurfaceMesh to_surface_mesh(const TriMesh& m) {
+  SurfaceMesh sm;
+  std::vector<SurfaceMesh::Vertex_index> vi;
+  vi.reserve(m.vertices.size());
+  for (const auto& v : m.vertices) vi.push_back(sm.add_vertex(K::Point_3(v.x(), v.y(), v.z())));
+  for (const auto& f : m.faces)
+    sm.add_face(vi[static_cast<std::size_t>(f[0])], vi[static_cast<std::size_t>(f[1])],
+                vi[static_cast<std::size_t>(f[2])]);
+  return sm;
+}
+
+TriMesh to_tri_mesh(SurfaceMesh& sm) {
+  sm.collect_garbage();
+  TriMesh m;
+  m.vertices.reserve(sm.number_of_vertices());
+  for (auto v : sm.vertices()) {
+    const auto& p = sm.point(v);
+    // Round from the exact value: to_double of a lazy number depends on how far it was
+    // evaluated, which would make the output depend on evaluation history.
+    m.vertices.emplace_back(CGAL::to_double(CGAL::exact(p.x())), CGAL::to_double(CGAL::exact(p.y())),
+                            CGAL::to_double(CGAL::exact(p.z())));
+  }
+  m.faces.reserve(sm.number_of_faces());
+  for (auto f : sm.faces()) {
+    Face tri{};
+    int i = 0;
+    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) {
+      if (i < 3) tri[static_cast<std::size_t>(i)] = static_cast<int>(v.idx());
+      ++i;
+    }
+    m.faces.push_back(tri);
+  }
+  return m;
+}
+
+}  // namespace
+
+Result<TriMesh> union_solids(const std::vector<TriMesh>& solids) {
+  if (solids.empty()) return TriMesh{};
+  if (solids.size() == 1) return solids.front();
+  SurfaceMesh acc = to_surface_mesh(solids.front());
+  for (std::size_t i = 1; i < solids.size(); ++i) {
+    SurfaceMesh next = to_surface_mesh(solids[i]);
+    bool ok = false;
+    try {
+      ok = PMP::corefine_and_compute_union(acc, next, acc);
+    } catch (const std::exception& e) {
+      return Result<TriMesh>::error(std::string("union of primitives failed: ") + e.what());
+    }
+    if (!ok) return Result<TriMesh>::error("union of primitives would not be 2-manifold (primitive " + std::to_string(i) + ")");
+  }
+  return to_tri_mesh(acc);
+}
+
+}  // namespace ps
