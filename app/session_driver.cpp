@@ -1,0 +1,92 @@
+#include "app/session_driver.h"
+
+#include <type_traits>
+#include <variant>
+
+namespace ps::app {
+
+SessionDriver::SessionDriver(SessionParams params) : session_(std::move(params)) {}
+
+void SessionDriver::on_header(const LogHeader& header) { input_ = InputState::from_header(header); }
+
+void SessionDriver::on_pen_sample(const PenSample&) {
+  // Whole strokes arrive through on_stroke; single samples only matter to the live preview.
+}
+
+void SessionDriver::report(double t, int line, const std::string& text) {
+  messages_.push_back(DriverMessage{t, line, text});
+}
+
+void SessionDriver::changed() {
+  if (on_model_changed) on_model_changed(session_);
+}
+
+void SessionDriver::on_action(const TimedEvent& e) {
+  std::visit(
+      [&](const auto& a) {
+        using T = std::decay_t<decltype(a)>;
+        if constexpr (std::is_same_v<T, Undo>) {
+          if (auto st = session_.undo(); !st) report(e.t, e.line, st.message());
+          else changed();
+        } else if constexpr (std::is_same_v<T, Redo>) {
+          if (auto st = session_.redo(); !st) report(e.t, e.line, st.message());
+          else changed();
+        } else if constexpr (std::is_same_v<T, DeleteSection>) {
+          if (auto st = session_.delete_section(a.section); !st) report(e.t, e.line, st.message());
+          else changed();
+        } else if constexpr (std::is_same_v<T, SetParameter>) {
+          // Parameters the session knows; the rest (e.g. view settings) belong to the input state.
+          if (a.name == "lambda" || a.name == "filter_px" || a.name == "improve") {
+            if (auto st = session_.set_parameter(a.name, a.value); !st) report(e.t, e.line, st.message());
+          }
+          if (auto st = input_.apply(e.event); !st) report(e.t, e.line, st.message());
+        } else if constexpr (std::is_same_v<T, Save>) {
+          if (on_save) on_save(a.path);
+        } else if constexpr (std::is_same_v<T, PenSample>) {
+          on_pen_sample(a);
+        } else {
+          if (auto st = input_.apply(e.event); !st) report(e.t, e.line, st.message());
+        }
+      },
+      e.event);
+}
+
+void SessionDriver::on_stroke(const Stroke& stroke) {
+  if (stroke.samples.empty()) return;
+  const double t = stroke.samples.front().t;
+  std::vector<Vec2> pts;
+  pts.reserve(stroke.samples.size());
+  for (const auto& s : stroke.samples) pts.emplace_back(s.x, s.y);
+
+  if (stroke.tool == Tool::kEraser) {
+    // The eraser end deletes the section it touches.
+    int hit = -1;
+    for (const auto& p : pts) {
+      hit = session_.pick_section(p, input_.camera, 12.0);
+      if (hit >= 0) break;
+    }
+    if (hit < 0) {
+      report(t, 0, "eraser touched no section");
+      return;
+    }
+    if (auto st = session_.delete_section(hit); !st) report(t, 0, st.message());
+    else changed();
+    return;
+  }
+  if (input_.mode != "sketch") {
+    report(t, 0, "stroke in '" + input_.mode + "' mode ignored: replay drives the sketching tool");
+    return;
+  }
+  const auto plane = input_.current_plane();
+  if (!plane) {
+    report(t, 0, "stroke refused: no reference plane is selected");
+    return;
+  }
+  if (auto st = session_.add_window_stroke(pts, input_.camera, *plane); !st) {
+    report(t, 0, "stroke refused: " + st.message());
+    return;
+  }
+  changed();
+}
+
+}  // namespace ps::app

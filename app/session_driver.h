@@ -1,0 +1,48 @@
+#pragma once
+// Drives a SketchSession from input events: the one code path shared by the live window and
+// headless replay (the replayer and the window both call this EventSink).
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "input/input_state.h"
+#include "input/stroke_replayer.h"
+#include "modeling/sketch_session.h"
+
+namespace ps::app {
+
+struct DriverMessage {
+  double t = 0.0;  // ms, log time
+  int line = 0;    // source line in the log (0 when unknown)
+  std::string text;
+};
+
+class SessionDriver : public EventSink {
+ public:
+  explicit SessionDriver(SessionParams params = {});
+
+  void on_header(const LogHeader& header) override;
+  void on_pen_sample(const PenSample& sample) override;
+  void on_action(const TimedEvent& event) override;
+  void on_stroke(const Stroke& stroke) override;
+
+  const SketchSession& session() const { return session_; }
+  SketchSession& session() { return session_; }
+  const InputState& input() const { return input_; }
+  // Refused strokes and actions, in order (the model was left unchanged for each).
+  const std::vector<DriverMessage>& messages() const { return messages_; }
+  // Called after every change of the model (accepted stroke, delete, undo, redo).
+  std::function<void(const SketchSession&)> on_model_changed;
+  // Called for a save action with its path (the live app saves; replay leaves it unset).
+  std::function<void(const std::string& path)> on_save;
+
+ private:
+  void report(double t, int line, const std::string& text);
+  void changed();
+
+  SketchSession session_;
+  InputState input_;
+  std::vector<DriverMessage> messages_;
+};
+
+}  // namespace ps::app

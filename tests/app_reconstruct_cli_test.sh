@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# planesketch reconstruct: a valid contour JSON gives a valid closed mesh and a report; every bad
+# input of the issue's list gives a message naming the curve, a non-zero exit and no output.
+set -euo pipefail
+bin="${PLANESKETCH_BINARY:?}"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+
+python3 - "$tmp" <<'PY'
+import json, math, sys, os
+d = sys.argv[1]
+def ellipse(axis, off, a, b, n=48, c=(0,0)):
+    pts = []
+    for i in range(n):
+        t = 2*math.pi*i/n
+        u, v = c[0] + a*math.cos(t), c[1] + b*math.sin(t)
+        p = [0,0,0]; p[axis] = off
+        others = [k for k in range(3) if k != axis]
+        p[others[0]] = u; p[others[1]] = v
+        pts.append(p)
+    return pts
+# Three orthogonal slices of the ellipsoid x^2/1 + y^2/0.49 + z^2/0.25 = 1 through the origin.
+good = {"format": "cross-sections", "version": 1, "planes": [
+          {"normal": [1,0,0], "offset": 0}, {"normal": [0,1,0], "offset": 0}, {"normal": [0,0,1], "offset": 0}],
+        "curves": [{"plane": 0, "points": ellipse(0, 0, 0.7, 0.5)},
+                   {"plane": 1, "points": ellipse(1, 0, 1.0, 0.5)},
+                   {"plane": 2, "points": ellipse(2, 0, 1.0, 0.7)}]}
+json.dump(good, open(os.path.join(d, "good.json"), "w"))
+def variant(name, mutate):
+    g = json.loads(json.dumps(good)); mutate(g); json.dump(g, open(os.path.join(d, name + ".json"), "w"))
+def nan(g): g["curves"][1]["points"][3][0] = float("nan")
+variant("few", lambda g: g["curves"][1].__setitem__("points", g["curves"][1]["points"][:2]))
+variant("zeroarea", lambda g: g["curves"][1].__setitem__("points", [[0,0,0],[0.5,0,0.5],[1,0,1]]))
+variant("dup", lambda g: g["curves"][1]["points"].insert(5, list(g["curves"][1]["points"][5])))
+variant("offplane", lambda g: g["curves"][1]["points"][4].__setitem__(1, 0.3))
+def crossing(g):
+    g["curves"].append({"plane": 2, "points": ellipse(2, 0, 0.4, 1.2)})
+variant("crossing", crossing)
+open(os.path.join(d, "nan.json"), "w").write(json.dumps(good).replace("0.5, 0, 0.0]", "NaN, 0, 0.0]", 1))
+g = json.loads(json.dumps(good)); nan(g)
+open(os.path.join(d, "nan.json"), "w").write(json.dumps(g))
+open(os.path.join(d, "empty.json"), "w").write("")
+PY
+
+"$bin" reconstruct "$tmp/good.json" -o "$tmp/good.obj" --report "$tmp/good-report.json" -q
+python3 - "$tmp/good-report.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+for k in ("vertices", "faces", "components", "genus", "closed", "self_intersecting", "max_curve_distance", "timings_ms"):
+    assert k in r, k
+assert r["closed"] and r["manifold"] and r["outward"] and not r["self_intersecting"], r
+assert r["components"] == 1 and r["genus"] == 0, r
+assert r["max_curve_distance_relative"] <= 1e-6, r
+print("good: faces", r["faces"], "total ms", r["timings_ms"]["command_total"])
+PY
+
+expect_fail() {  # file, expected substring
+  local f="$1" want="$2"
+  rm -f "$tmp/out.obj"
+  if "$bin" reconstruct "$tmp/$f" -o "$tmp/out.obj" -q 2> "$tmp/err"; then
+    echo "FAIL: $f was accepted"; exit 1
+  fi
+  if ! grep -qi -- "$want" "$tmp/err"; then
+    echo "FAIL: $f: message does not mention '$want':"; cat "$tmp/err"; exit 1
+  fi
+  [ ! -e "$tmp/out.obj" ] || { echo "FAIL: $f left an output file"; exit 1; }
+  echo "ok: $f -> $(head -c 200 "$tmp/err")"
+}
+expect_fail empty.json "empty"
+expect_fail nan.json "curve"
+expect_fail few.json "curve 1"
+expect_fail zeroarea.json "curve 1"
+expect_fail dup.json "curve 1"
+expect_fail offplane.json "curve 1"
+expect_fail crossing.json "cross"
+expect_fail missing.json "missing.json"
+if "$bin" reconstruct "$tmp/good.json" -o "$tmp/out.xyz" 2> "$tmp/err"; then echo "FAIL: bad extension accepted"; exit 1; fi
+echo "reconstruct cli ok"
