@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <unordered_map>
 
 namespace ps::engine {
 
@@ -225,6 +226,28 @@ FrameGeometry build_frame_geometry(const Scene& scene) {
                   s.color.a >= 1.f ? fg.opaque_ribbons : fg.translucent_ribbons);
   }
   return fg;
+}
+
+bool is_closed_and_outward(const ps::TriMesh& mesh) {
+  if (mesh.faces.empty()) return false;
+  std::unordered_map<uint64_t, int> directed;
+  directed.reserve(3 * mesh.faces.size());
+  const auto key = [](int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); };
+  for (const auto& f : mesh.faces)
+    for (int k = 0; k < 3; ++k) {
+      const int a = f[std::size_t(k)], b = f[std::size_t((k + 1) % 3)];
+      if (a == b) return false;
+      if (++directed[key(a, b)] > 1) return false;  // the same directed edge twice
+    }
+  for (const auto& [k, count] : directed) {
+    const int a = int(uint32_t(k >> 32)), b = int(uint32_t(k & 0xffffffffu));
+    if (!directed.contains(key(b, a))) return false;
+  }
+  double six_volume = 0.0;
+  for (const auto& f : mesh.faces)
+    six_volume += mesh.vertices[std::size_t(f[0])].dot(
+        mesh.vertices[std::size_t(f[1])].cross(mesh.vertices[std::size_t(f[2])]));
+  return six_volume > 0.0;
 }
 
 std::vector<ps::Vec3> vertex_normals(const ps::TriMesh& mesh) {

@@ -78,6 +78,11 @@ struct MeshBuffers {
 };
 MeshBuffers prepare_mesh(const ps::TriMesh& mesh, bool wireframe);
 
+// True when every directed edge (a, b) of the mesh has exactly one opposite edge (b, a) (closed
+// and consistently oriented) and the signed volume is positive (faces point outwards): back
+// faces are then never visible from outside, so an opaque draw may cull them.
+bool is_closed_and_outward(const ps::TriMesh& mesh);
+
 // Area-weighted unit vertex normals (zero for isolated vertices).
 std::vector<ps::Vec3> vertex_normals(const ps::TriMesh& mesh);
 

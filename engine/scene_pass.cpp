@@ -42,6 +42,7 @@ struct PipelineDesc {
   BlendKind blend;
   bool depth_test;
   bool depth_write;
+  bool cull_back = false;
 };
 
 Result<vk::Pipeline> make_pipeline(const vk::Context& ctx, VkRenderPass pass,
@@ -94,7 +95,11 @@ Result<vk::Pipeline> make_pipeline(const vk::Context& ctx, VkRenderPass pass,
   VkPipelineRasterizationStateCreateInfo rs{};
   rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
   rs.polygonMode = VK_POLYGON_MODE_FILL;
-  rs.cullMode = VK_CULL_MODE_NONE;  // meshes are lit two-sided; planes and ribbons face both ways
+  // Meshes are lit two-sided and planes and ribbons face both ways, so nothing is culled except
+  // opaque closed meshes. Faces are counter-clockwise seen from outside; Vulkan's facing
+  // formula (a = -1/2 sum x_i y_{i+1} - x_{i+1} y_i in y-down framebuffer coordinates) already
+  // absorbs the y flip of our projection, so counter-clockwise stays front-facing.
+  rs.cullMode = d.cull_back ? VkCullModeFlags{VK_CULL_MODE_BACK_BIT} : VkCullModeFlags{VK_CULL_MODE_NONE};
   rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   rs.lineWidth = 1.f;
 
@@ -332,8 +337,9 @@ Status ScenePass::create_pipelines() {
     vk::Pipeline* target;
     PipelineDesc desc;
   };
-  const std::array<Entry, 5> entries{{
+  const std::array<Entry, 6> entries{{
       {&mesh_opaque_, {"mesh.vert", "mesh_opaque.frag", 0, VertexKind::mesh, BlendKind::opaque, true, true}},
+      {&mesh_opaque_culled_, {"mesh.vert", "mesh_opaque.frag", 0, VertexKind::mesh, BlendKind::opaque, true, true, true}},
       {&color_opaque_, {"color.vert", "color_opaque.frag", 0, VertexKind::color, BlendKind::opaque, true, true}},
       {&mesh_oit_, {"mesh.vert", "mesh_oit.frag", 1, VertexKind::mesh, BlendKind::oit, true, false}},
       {&color_oit_, {"color.vert", "color_oit.frag", 1, VertexKind::color, BlendKind::oit, true, false}},
@@ -427,6 +433,7 @@ Status ScenePass::update_mesh(GpuMesh& slot, const MeshVisual& m) {
     std::memcpy(slot.indices.mapped, data.indices.data(), ibytes);
     slot.index_count = static_cast<uint32_t>(data.indices.size());
   }
+  slot.closed = is_closed_and_outward(m.mesh);
   slot.fingerprint = fp;
   slot.wireframe = m.wireframe;
   slot.valid = true;
@@ -542,7 +549,9 @@ void ScenePass::record(VkCommandBuffer cmd) const {
   vkCmdSetScissor(cmd, 0, 1, &scissor);
 
   // === Subpass 0: opaque
-  if (solid_draw_.enabled) draw_mesh(cmd, mesh_opaque_.get(), solid_, solid_draw_);
+  if (solid_draw_.enabled)
+    draw_mesh(cmd, solid_.closed && !disable_culling_ ? mesh_opaque_culled_.get() : mesh_opaque_.get(),
+              solid_, solid_draw_);
   draw_colored(cmd, color_opaque_.get(), false, opaque_ribbons_offset_, opaque_ribbons_count_);
 
   // === Subpass 1: translucent accumulation

@@ -272,6 +272,24 @@ TEST(EngineMesh, IndexedAndExpandedUploadsDescribeTheSameTriangles) {
   }
 }
 
+TEST(EngineMesh, ClosedOutwardDetection) {
+  TriMesh m = octahedron();
+  EXPECT_TRUE(is_closed_and_outward(m));
+  TriMesh inward = m;
+  for (auto& f : inward.faces) std::swap(f[1], f[2]);
+  EXPECT_FALSE(is_closed_and_outward(inward));  // negative volume
+  TriMesh open = m;
+  open.faces.pop_back();
+  EXPECT_FALSE(is_closed_and_outward(open));
+  TriMesh flipped_one = m;
+  std::swap(flipped_one.faces[3][1], flipped_one.faces[3][2]);
+  EXPECT_FALSE(is_closed_and_outward(flipped_one));  // inconsistent orientation
+  // Translation does not change the answer (signed volume is translation invariant).
+  TriMesh moved = m;
+  for (auto& v : moved.vertices) v += Vec3(100.0, -50.0, 20.0);
+  EXPECT_TRUE(is_closed_and_outward(moved));
+}
+
 TEST(EngineMesh, FingerprintChangesWithContent) {
   TriMesh m = octahedron();
   const uint64_t a = mesh_fingerprint(m);
