@@ -56,6 +56,7 @@ class ScenePass {
     vk::BufferAlloc vertices, indices;
     uint32_t index_count = 0;
     bool closed = false;  // is_closed_and_outward: the opaque draw culls back faces
+    ps::Box3 box;         // world bounding box, for the composite's screen bounds
   };
   struct Draw {
     bool enabled = false;
@@ -88,6 +89,7 @@ class ScenePass {
   Draw solid_draw_, preview_draw_;
   VkDeviceSize fills_offset_ = 0, opaque_ribbons_offset_ = 0, translucent_ribbons_offset_ = 0;
   std::size_t fills_count_ = 0, opaque_ribbons_count_ = 0, translucent_ribbons_count_ = 0;
+  VkRect2D composite_rect_{};  // where translucent fragments can be; the composite's scissor
   std::size_t mesh_uploads_ = 0;
   bool disable_culling_ = false;
 };

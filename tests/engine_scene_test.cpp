@@ -343,6 +343,38 @@ TEST(EngineScene, FrameGeometrySortsStrokesByOpacity) {
   EXPECT_EQ(fg.translucent_ribbons.size(), 6u);
 }
 
+TEST(EngineScene, TranslucentBoundsCoverTheFillsAndGrowToTheImageBehindTheEye) {
+  Scene s;
+  s.camera = test_camera(false);
+  PlaneVisual p;
+  p.plane.normal = Vec3::UnitY();
+  p.center = Vec3(0.0, 0.0, 0.0);
+  p.half_size = 0.3;
+  s.planes.push_back(p);
+  const FrameGeometry fg = build_frame_geometry(s);
+  const PixelBounds& b = fg.translucent_bounds;
+  ASSERT_FALSE(b.empty());
+  EXPECT_LT((b.x1 - b.x0) * (b.y1 - b.y0), s.camera.width * s.camera.height / 2);
+  for (const auto& c : plane_corners(p)) {
+    const auto px = s.camera.project(c);
+    EXPECT_GE(px->x(), b.x0);
+    EXPECT_LE(px->x(), b.x1);
+    EXPECT_GE(px->y(), b.y0);
+    EXPECT_LE(px->y(), b.y1);
+  }
+  // A plane through the eye: its projection is unbounded, so the whole image.
+  s.planes[0].center = s.camera.eye;
+  s.planes[0].half_size = 10.0;
+  const PixelBounds all = build_frame_geometry(s).translucent_bounds;
+  EXPECT_EQ(all.x0, 0);
+  EXPECT_EQ(all.y0, 0);
+  EXPECT_EQ(all.x1, s.camera.width);
+  EXPECT_EQ(all.y1, s.camera.height);
+  // Nothing translucent: empty.
+  s.planes.clear();
+  EXPECT_TRUE(build_frame_geometry(s).translucent_bounds.empty());
+}
+
 // === Images and PNG files
 
 TEST(EngineImage, PngRoundTripAndAtomicFailure) {
