@@ -337,11 +337,14 @@ Status ScenePass::create_pipelines() {
     vk::Pipeline* target;
     PipelineDesc desc;
   };
-  const std::array<Entry, 6> entries{{
-      {&mesh_opaque_, {"mesh.vert", "mesh_opaque.frag", 0, VertexKind::mesh, BlendKind::opaque, true, true}},
-      {&mesh_opaque_culled_, {"mesh.vert", "mesh_opaque.frag", 0, VertexKind::mesh, BlendKind::opaque, true, true, true}},
+  const std::array<Entry, 9> entries{{
+      {&mesh_[0][0], {"mesh.vert", "mesh_opaque.frag", 0, VertexKind::mesh, BlendKind::opaque, true, true}},
+      {&mesh_[0][1], {"mesh.vert", "mesh_opaque.frag", 0, VertexKind::mesh, BlendKind::opaque, true, true, true}},
+      {&mesh_[0][2], {"mesh.vert", "mesh_oit.frag", 1, VertexKind::mesh, BlendKind::oit, true, false}},
+      {&mesh_[1][0], {"mesh_wire.vert", "mesh_opaque_wire.frag", 0, VertexKind::mesh, BlendKind::opaque, true, true}},
+      {&mesh_[1][1], {"mesh_wire.vert", "mesh_opaque_wire.frag", 0, VertexKind::mesh, BlendKind::opaque, true, true, true}},
+      {&mesh_[1][2], {"mesh_wire.vert", "mesh_oit_wire.frag", 1, VertexKind::mesh, BlendKind::oit, true, false}},
       {&color_opaque_, {"color.vert", "color_opaque.frag", 0, VertexKind::color, BlendKind::opaque, true, true}},
-      {&mesh_oit_, {"mesh.vert", "mesh_oit.frag", 1, VertexKind::mesh, BlendKind::oit, true, false}},
       {&color_oit_, {"color.vert", "color_oit.frag", 1, VertexKind::color, BlendKind::oit, true, false}},
       {&composite_, {"composite.vert", "composite.frag", 2, VertexKind::none, BlendKind::composite, false, false}},
   }};
@@ -517,7 +520,7 @@ void ScenePass::draw_mesh(VkCommandBuffer cmd, VkPipeline pipeline, const GpuMes
             camera_.orthographic ? 0.f : 1.f};
   pc.forward = {float(f.x()), float(f.y()), float(f.z()),
                 float((camera_.target - camera_.eye).norm())};
-  pc.params = {d.wireframe ? 1.f : 0.f, float(camera_.near_plane),
+  pc.params = {0.f, float(camera_.near_plane),
                float(camera_.far_plane - camera_.near_plane), 0.f};
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
   vkCmdPushConstants(cmd, pipeline_layout_.get(),
@@ -566,14 +569,15 @@ void ScenePass::record(VkCommandBuffer cmd) const {
   vkCmdSetScissor(cmd, 0, 1, &scissor);
 
   // === Subpass 0: opaque
-  if (solid_draw_.enabled)
-    draw_mesh(cmd, solid_.closed && !disable_culling_ ? mesh_opaque_culled_.get() : mesh_opaque_.get(),
-              solid_, solid_draw_);
+  if (solid_draw_.enabled) {
+    const int variant = solid_.closed && !disable_culling_ ? 1 : 0;
+    draw_mesh(cmd, mesh_[solid_draw_.wireframe][variant].get(), solid_, solid_draw_);
+  }
   draw_colored(cmd, color_opaque_.get(), false, opaque_ribbons_offset_, opaque_ribbons_count_);
 
   // === Subpass 1: translucent accumulation
   vkCmdNextSubpass(cmd, VK_SUBPASS_CONTENTS_INLINE);
-  if (preview_draw_.enabled) draw_mesh(cmd, mesh_oit_.get(), preview_, preview_draw_);
+  if (preview_draw_.enabled) draw_mesh(cmd, mesh_[preview_draw_.wireframe][2].get(), preview_, preview_draw_);
   draw_colored(cmd, color_oit_.get(), true, fills_offset_, fills_count_);
   draw_colored(cmd, color_oit_.get(), false, translucent_ribbons_offset_,
                translucent_ribbons_count_);

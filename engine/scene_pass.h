@@ -75,7 +75,10 @@ class ScenePass {
   vk::RenderPass render_pass_;
   vk::DescriptorSetLayout set_layout_;
   vk::PipelineLayout pipeline_layout_;
-  vk::Pipeline mesh_opaque_, mesh_opaque_culled_, mesh_oit_, color_opaque_, color_oit_, composite_;
+  // Mesh pipelines by [wireframe][variant]: variant 0 opaque, 1 opaque with back faces culled,
+  // 2 translucent (OIT).
+  vk::Pipeline mesh_[2][3];
+  vk::Pipeline color_opaque_, color_oit_, composite_;
   vk::DescriptorPool descriptor_pool_;
   vk::DescriptorSet composite_set_;
   Targets targets_;
