@@ -2,7 +2,7 @@
 // Renders a mesh headless (lavapipe when there is no GPU) with the three basic planes around it.
 #include <cstdio>
 #include <memory>
-#include <regex>
+#include <optional>
 #include <string>
 
 #include "app/commands.h"
@@ -22,13 +22,30 @@ struct RenderArgs {
   bool validation = false;
 };
 
+// "WIDTHxHEIGHT" with 1 to 5 digits each (std::regex is avoided: GCC 12 warns inside it under
+// the sanitizer build, and -Werror is on in CI).
+std::optional<std::pair<int, int>> parse_size(const std::string& s) {
+  const auto x = s.find('x');
+  if (x == std::string::npos) return std::nullopt;
+  const auto number = [](const std::string& t) -> std::optional<int> {
+    if (t.empty() || t.size() > 5) return std::nullopt;
+    int v = 0;
+    for (char c : t) {
+      if (c < '0' || c > '9') return std::nullopt;
+      v = v * 10 + (c - '0');
+    }
+    return v;
+  };
+  const auto w = number(s.substr(0, x)), h = number(s.substr(x + 1));
+  if (!w || !h) return std::nullopt;
+  return std::pair{*w, *h};
+}
+
 void run_render(const RenderArgs& a) {
   // === Arguments
-  const std::regex size_re(R"(^([0-9]{1,5})x([0-9]{1,5})$)");
-  std::smatch m;
-  if (!std::regex_match(a.size, m, size_re))
-    throw CommandFailed("--size '" + a.size + "': expected WIDTHxHEIGHT, e.g. 1280x800", 2);
-  const int w = std::stoi(m[1].str()), h = std::stoi(m[2].str());
+  const auto size = parse_size(a.size);
+  if (!size) throw CommandFailed("--size '" + a.size + "': expected WIDTHxHEIGHT, e.g. 1280x800", 2);
+  const auto [w, h] = *size;
   if (w < 1 || h < 1 || w > 16384 || h > 16384)
     throw CommandFailed("--size '" + a.size + "': width and height must be in 1..16384", 2);
   const auto view = engine::parse_view(a.view);

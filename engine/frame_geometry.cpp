@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <unordered_map>
 
 namespace ps::engine {
 
@@ -198,6 +199,42 @@ Rgba plane_border_color(const PlaneVisual& p) {
 
 float plane_border_width_px(const PlaneVisual& p) { return p.selected ? 3.5f : 1.5f; }
 
+// === Screen bounds
+
+PixelBounds make_bounds(int width, int height) {
+  PixelBounds b;
+  b.width = width;
+  b.height = height;
+  b.x0 = width;
+  b.y0 = height;
+  return b;
+}
+
+void PixelBounds::add_all() {
+  x0 = 0;
+  y0 = 0;
+  x1 = width;
+  y1 = height;
+}
+
+void PixelBounds::add_clip(const glm::vec4& c) {
+  if (!(c.w > 0.f)) {
+    add_all();
+    return;
+  }
+  const double px = (double(c.x) / double(c.w) + 1.0) * 0.5 * width;
+  const double py = (double(c.y) / double(c.w) + 1.0) * 0.5 * height;
+  if (!std::isfinite(px) || !std::isfinite(py)) {
+    add_all();
+    return;
+  }
+  const auto clampi = [](double v, int hi) { return int(std::clamp(v, 0.0, double(hi))); };
+  x0 = std::min(x0, clampi(std::floor(px) - 1.0, width));
+  y0 = std::min(y0, clampi(std::floor(py) - 1.0, height));
+  x1 = std::max(x1, clampi(std::ceil(px) + 1.0, width));
+  y1 = std::max(y1, clampi(std::ceil(py) + 1.0, height));
+}
+
 // === Whole frame
 
 namespace {
@@ -208,6 +245,7 @@ FrameGeometry build_frame_geometry(const Scene& scene) {
   FrameGeometry fg;
   const ps::Camera& cam = scene.camera;
   fg.view_proj = vulkan_view_projection(cam);
+  fg.translucent_bounds = make_bounds(cam.width, cam.height);
   for (const auto& p : scene.planes) {
     const auto k = plane_corners(p);
     const glm::vec4 fill = to_glm(plane_fill_color(p));
@@ -224,7 +262,31 @@ FrameGeometry build_frame_geometry(const Scene& scene) {
     append_ribbon(cam, s.points, s.pressure, s.width_px, s.closed, s.color, kRibbonDepthPull,
                   s.color.a >= 1.f ? fg.opaque_ribbons : fg.translucent_ribbons);
   }
+  for (const auto& v : fg.plane_fills) fg.translucent_bounds.add_clip(fg.view_proj * v.pos);
+  for (const auto& v : fg.translucent_ribbons) fg.translucent_bounds.add_clip(v.pos);
   return fg;
+}
+
+bool is_closed_and_outward(const ps::TriMesh& mesh) {
+  if (mesh.faces.empty()) return false;
+  std::unordered_map<uint64_t, int> directed;
+  directed.reserve(3 * mesh.faces.size());
+  const auto key = [](int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); };
+  for (const auto& f : mesh.faces)
+    for (int k = 0; k < 3; ++k) {
+      const int a = f[std::size_t(k)], b = f[std::size_t((k + 1) % 3)];
+      if (a == b) return false;
+      if (++directed[key(a, b)] > 1) return false;  // the same directed edge twice
+    }
+  for (const auto& [k, count] : directed) {
+    const int a = int(uint32_t(k >> 32)), b = int(uint32_t(k & 0xffffffffu));
+    if (!directed.contains(key(b, a))) return false;
+  }
+  double six_volume = 0.0;
+  for (const auto& f : mesh.faces)
+    six_volume += mesh.vertices[std::size_t(f[0])].dot(
+        mesh.vertices[std::size_t(f[1])].cross(mesh.vertices[std::size_t(f[2])]));
+  return six_volume > 0.0;
 }
 
 std::vector<ps::Vec3> vertex_normals(const ps::TriMesh& mesh) {

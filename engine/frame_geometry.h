@@ -58,6 +58,20 @@ Rgba plane_fill_color(const PlaneVisual& p);
 Rgba plane_border_color(const PlaneVisual& p);
 float plane_border_width_px(const PlaneVisual& p);
 
+// === Screen bounds
+
+// A conservative pixel rectangle [x0, x1) x [y0, y1) inside the image, grown point by point.
+struct PixelBounds {
+  int width = 0, height = 0;  // the image
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+  // Add a clip-space point; a point at or behind the eye (w <= 0) makes the bounds the whole
+  // image (its projection is unbounded). One pixel of margin covers rasterization rounding.
+  void add_clip(const glm::vec4& c);
+  void add_all();
+};
+PixelBounds make_bounds(int width, int height);
+
 // === Whole frame
 
 // Per-frame geometry (everything except the meshes, which are cached by the renderer).
@@ -66,6 +80,7 @@ struct FrameGeometry {
   std::vector<ColorVertex> plane_fills;          // world space, translucent, triangle list
   std::vector<ColorVertex> opaque_ribbons;       // clip space, triangle list
   std::vector<ColorVertex> translucent_ribbons;  // clip space, triangle list
+  PixelBounds translucent_bounds;                // covers plane_fills and translucent_ribbons
 };
 FrameGeometry build_frame_geometry(const Scene& scene);
 
@@ -77,6 +92,11 @@ struct MeshBuffers {
   std::vector<uint32_t> indices;
 };
 MeshBuffers prepare_mesh(const ps::TriMesh& mesh, bool wireframe);
+
+// True when every directed edge (a, b) of the mesh has exactly one opposite edge (b, a) (closed
+// and consistently oriented) and the signed volume is positive (faces point outwards): back
+// faces are then never visible from outside, so an opaque draw may cull them.
+bool is_closed_and_outward(const ps::TriMesh& mesh);
 
 // Area-weighted unit vertex normals (zero for isolated vertices).
 std::vector<ps::Vec3> vertex_normals(const ps::TriMesh& mesh);

@@ -41,6 +41,7 @@ class OffscreenRenderer final : public Renderer {
         *r->ctx_, {static_cast<uint32_t>(o.width), static_cast<uint32_t>(o.height)});
     if (!pass) return pass.status();
     r->pass_ = std::move(*pass);
+    r->pass_->set_cull_closed_solids(o.cull_closed_solids);
     auto cmd = r->ctx_->allocate_command_buffer();
     if (!cmd) return cmd.status();
     r->cmd_ = std::move(*cmd);

@@ -51,6 +51,9 @@ struct RendererOptions {
   int height = 800;
   bool validation = false;  // also on when PLANESKETCH_VALIDATION=1
   bool prefer_gpu = true;   // false: take lavapipe (CPU) even when a GPU exists
+  // Cull back faces of the opaque solid when it is closed and consistently oriented. The image
+  // is the same either way for such meshes (tested); off helps to look at broken meshes.
+  bool cull_closed_solids = true;
   // Where the one-line device report and validation messages go; null = stderr.
   std::function<void(const std::string&)> log;
 };

@@ -32,6 +32,10 @@ class ScenePass {
   // Record the render pass for the last prepared scene.
   void record(VkCommandBuffer cmd) const;
 
+  // Cull back faces of an opaque solid that is closed and consistently oriented (default on;
+  // the image is the same either way for such meshes, culling only saves work).
+  void set_cull_closed_solids(bool on) { disable_culling_ = !on; }
+
   VkImage color_image() const { return targets_.color.image.get(); }
   VkExtent2D extent() const { return targets_.extent; }
   // How many times mesh data has been uploaded (for tests of the cache).
@@ -51,6 +55,8 @@ class ScenePass {
     bool wireframe = false;
     vk::BufferAlloc vertices, indices;
     uint32_t index_count = 0;
+    bool closed = false;  // is_closed_and_outward: the opaque draw culls back faces
+    ps::Box3 box;         // world bounding box, for the composite's screen bounds
   };
   struct Draw {
     bool enabled = false;
@@ -69,7 +75,10 @@ class ScenePass {
   vk::RenderPass render_pass_;
   vk::DescriptorSetLayout set_layout_;
   vk::PipelineLayout pipeline_layout_;
-  vk::Pipeline mesh_opaque_, mesh_oit_, color_opaque_, color_oit_, composite_;
+  // Mesh pipelines by [wireframe][variant]: variant 0 opaque, 1 opaque with back faces culled,
+  // 2 translucent (OIT).
+  vk::Pipeline mesh_[2][3];
+  vk::Pipeline color_opaque_, color_oit_, composite_;
   vk::DescriptorPool descriptor_pool_;
   vk::DescriptorSet composite_set_;
   Targets targets_;
@@ -83,7 +92,9 @@ class ScenePass {
   Draw solid_draw_, preview_draw_;
   VkDeviceSize fills_offset_ = 0, opaque_ribbons_offset_ = 0, translucent_ribbons_offset_ = 0;
   std::size_t fills_count_ = 0, opaque_ribbons_count_ = 0, translucent_ribbons_count_ = 0;
+  VkRect2D composite_rect_{};  // where translucent fragments can be; the composite's scissor
   std::size_t mesh_uploads_ = 0;
+  bool disable_culling_ = false;
 };
 
 }  // namespace ps::engine

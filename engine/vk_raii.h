@@ -6,10 +6,12 @@
 // of vkDestroy* calls. Destruction order follows C++ member order: declare owners after the
 // objects they depend on (device after instance, view after image, ...).
 //
-// Lifetime rule: the offscreen renderer is synchronous (it waits for each frame's fence before
-// it returns), so by the time an owner is destroyed or replaced no submitted work uses it. Code
-// with frames in flight must keep a replaced owner alive until its frame's fence has signalled
-// (see DeferredRelease in vk_context.h).
+// Lifetime rule: both users keep at most one frame in flight. The offscreen renderer waits for
+// each frame's fence before it returns; the window presenter waits for the previous frame's
+// fence before it prepares the next one and idles the device before it replaces the swapchain.
+// So when an owner is destroyed or replaced no submitted work uses it, and no deletion queue
+// is needed. (Code that keeps several frames in flight would have to keep a replaced owner
+// alive until the fence of the last frame using it has signalled.)
 #include <vulkan/vulkan.h>
 
 #include <utility>

@@ -18,20 +18,21 @@ float oit_weight(float alpha) {
   return alpha * clamp(w, 1e-2, 3e2);
 }
 
-// Headlight shading (Lambert + Blinn with the light at the eye, so H == V), two-sided, with an
-// optional wireframe overlay from barycentric coordinates.
-vec3 shade(vec3 base, vec3 world, vec3 normal, vec3 bary) {
+// Headlight shading (Lambert + Blinn with the light at the eye, so H == V), two-sided.
+vec3 shade(vec3 base, vec3 world, vec3 normal) {
   vec3 V = pc.eye.w > 0.5 ? normalize(pc.eye.xyz - world) : -pc.forward.xyz;
   vec3 N = dot(normal, normal) > 1e-12 ? normalize(normal) : V;
   if (dot(N, V) < 0.0) N = -N;
   float ndl = max(dot(N, V), 0.0);
-  float spec = pow(ndl, 48.0);
-  vec3 c = base * (0.25 + 0.75 * ndl) + vec3(0.15 * spec);
-  if (pc.params.x > 0.5) {
-    vec3 d = fwidth(bary);
-    vec3 a = smoothstep(vec3(0.0), 1.2 * d, bary);
-    float edge = min(min(a.x, a.y), a.z);
-    c = mix(base * 0.3, c, edge);
-  }
-  return c;
+  float n3 = ndl * ndl * ndl, n6 = n3 * n3, n12 = n6 * n6, n24 = n12 * n12;
+  float spec = n24 * n24;  // ndl^48 by squaring (pow is exp2(log2) on CPU drivers)
+  return base * (0.25 + 0.75 * ndl) + vec3(0.15 * spec);
+}
+
+// Wireframe overlay: darken within about 1.2 px of a triangle edge (barycentric coordinates).
+vec3 wire_overlay(vec3 base, vec3 c, vec3 bary) {
+  vec3 d = fwidth(bary);
+  vec3 a = smoothstep(vec3(0.0), 1.2 * d, bary);
+  float edge = min(min(a.x, a.y), a.z);
+  return mix(base * 0.3, c, edge);
 }

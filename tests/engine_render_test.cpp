@@ -308,6 +308,35 @@ TEST_F(EngineRender, ReuseIsDeterministicAndCachesMeshes) {
   EXPECT_EQ(renderer_->stats().mesh_uploads, uploads + 2);
 }
 
+// Culling back faces of a closed, outward-oriented opaque mesh does not change the image (a
+// wrong winding convention would show the inside); an open mesh is never culled.
+TEST_F(EngineRender, BackFaceCullingOfClosedSolidsIsInvisible) {
+  RendererOptions o;
+  o.width = kW;
+  o.height = kH;
+  o.validation = true;
+  o.prefer_gpu = false;
+  o.cull_closed_solids = false;
+  auto unculled = create_offscreen_renderer(o);
+  ASSERT_TRUE(unculled.is_ok()) << unculled.message();
+  Scene s = base_scene();
+  s.solid = MeshVisual{torus(Vec3::Zero(), 0.6, 0.3, 40, 20), {0.6f, 0.7f, 0.8f, 1.f}, false};
+  auto a = renderer_->render(s), b = (*unculled)->render(s);
+  ASSERT_TRUE(a.is_ok() && b.is_ok());
+  EXPECT_EQ(compare_images(*a, *b).max_channel_diff, 0);
+  // Inside out (closed, consistently oriented, negative volume) or open: not culled, so the
+  // image is again the same as without culling.
+  for (auto& f : s.solid->mesh.faces) std::swap(f[1], f[2]);
+  auto c = renderer_->render(s), d = (*unculled)->render(s);
+  ASSERT_TRUE(c.is_ok() && d.is_ok());
+  EXPECT_EQ(compare_images(*c, *d).max_channel_diff, 0);
+  s.solid->mesh.faces.resize(s.solid->mesh.faces.size() / 2);
+  auto e = renderer_->render(s), f = (*unculled)->render(s);
+  ASSERT_TRUE(e.is_ok() && f.is_ok());
+  EXPECT_EQ(compare_images(*e, *f).max_channel_diff, 0);
+  EXPECT_EQ((*unculled)->validation_messages(), 0u);
+}
+
 // Targets follow the camera's size.
 TEST_F(EngineRender, TargetsFollowCameraSize) {
   Scene s = base_scene();

@@ -272,6 +272,24 @@ TEST(EngineMesh, IndexedAndExpandedUploadsDescribeTheSameTriangles) {
   }
 }
 
+TEST(EngineMesh, ClosedOutwardDetection) {
+  TriMesh m = octahedron();
+  EXPECT_TRUE(is_closed_and_outward(m));
+  TriMesh inward = m;
+  for (auto& f : inward.faces) std::swap(f[1], f[2]);
+  EXPECT_FALSE(is_closed_and_outward(inward));  // negative volume
+  TriMesh open = m;
+  open.faces.pop_back();
+  EXPECT_FALSE(is_closed_and_outward(open));
+  TriMesh flipped_one = m;
+  std::swap(flipped_one.faces[3][1], flipped_one.faces[3][2]);
+  EXPECT_FALSE(is_closed_and_outward(flipped_one));  // inconsistent orientation
+  // Translation does not change the answer (signed volume is translation invariant).
+  TriMesh moved = m;
+  for (auto& v : moved.vertices) v += Vec3(100.0, -50.0, 20.0);
+  EXPECT_TRUE(is_closed_and_outward(moved));
+}
+
 TEST(EngineMesh, FingerprintChangesWithContent) {
   TriMesh m = octahedron();
   const uint64_t a = mesh_fingerprint(m);
@@ -323,6 +341,38 @@ TEST(EngineScene, FrameGeometrySortsStrokesByOpacity) {
   // 3 closed borders (4 segments) + the opaque stroke; the translucent stroke alone.
   EXPECT_EQ(fg.opaque_ribbons.size(), 6u * (3u * 4u + 1u));
   EXPECT_EQ(fg.translucent_ribbons.size(), 6u);
+}
+
+TEST(EngineScene, TranslucentBoundsCoverTheFillsAndGrowToTheImageBehindTheEye) {
+  Scene s;
+  s.camera = test_camera(false);
+  PlaneVisual p;
+  p.plane.normal = Vec3::UnitY();
+  p.center = Vec3(0.0, 0.0, 0.0);
+  p.half_size = 0.3;
+  s.planes.push_back(p);
+  const FrameGeometry fg = build_frame_geometry(s);
+  const PixelBounds& b = fg.translucent_bounds;
+  ASSERT_FALSE(b.empty());
+  EXPECT_LT((b.x1 - b.x0) * (b.y1 - b.y0), s.camera.width * s.camera.height / 2);
+  for (const auto& c : plane_corners(p)) {
+    const auto px = s.camera.project(c);
+    EXPECT_GE(px->x(), b.x0);
+    EXPECT_LE(px->x(), b.x1);
+    EXPECT_GE(px->y(), b.y0);
+    EXPECT_LE(px->y(), b.y1);
+  }
+  // A plane through the eye: its projection is unbounded, so the whole image.
+  s.planes[0].center = s.camera.eye;
+  s.planes[0].half_size = 10.0;
+  const PixelBounds all = build_frame_geometry(s).translucent_bounds;
+  EXPECT_EQ(all.x0, 0);
+  EXPECT_EQ(all.y0, 0);
+  EXPECT_EQ(all.x1, s.camera.width);
+  EXPECT_EQ(all.y1, s.camera.height);
+  // Nothing translucent: empty.
+  s.planes.clear();
+  EXPECT_TRUE(build_frame_geometry(s).translucent_bounds.empty());
 }
 
 // === Images and PNG files
