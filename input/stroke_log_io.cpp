@@ -436,7 +436,8 @@ std::string parse_header(const json& j, LogHeader& h) {
       if (std::string e = po.number("offset", p.offset); !e.empty()) return "planes[" + std::to_string(i) + "]: " + e;
       const double n = p.normal.norm();
       if (!(std::abs(n - 1.0) <= 1e-6)) return "planes[" + std::to_string(i) + "]: normal is not unit length";
-      p.normal /= n;
+      // Normalize only what is not already unit length, so reading is idempotent bit for bit.
+      if (std::abs(n - 1.0) > 4.0 * std::numeric_limits<double>::epsilon()) p.normal /= n;
       h.planes.push_back(p);
     }
   }
