@@ -20,9 +20,6 @@ using json = nlohmann::ordered_json;
 // === Names
 
 namespace {
-template <class>
-inline constexpr bool kAlwaysFalse = false;
-
 constexpr std::size_t kMaxLineBytes = 1 << 20;  // a pen line is ~200 bytes; 1 MiB is generous
 constexpr int kMaxNesting = 16;                 // the format nests 3 levels deep
 }  // namespace
@@ -40,8 +37,10 @@ std::string_view event_type_name(const Event& e) {
         else if constexpr (std::is_same_v<T, Undo>) return "undo";
         else if constexpr (std::is_same_v<T, Redo>) return "redo";
         else if constexpr (std::is_same_v<T, DeleteSection>) return "delete";
-        else if constexpr (std::is_same_v<T, Save>) return "save";
-        else static_assert(kAlwaysFalse<T>, "unhandled event type");
+        else {
+          static_assert(std::is_same_v<T, Save>, "unhandled event type");
+          return "save";
+        }
       },
       e);
 }
