@@ -20,9 +20,6 @@ using json = nlohmann::ordered_json;
 // === Names
 
 namespace {
-template <class>
-inline constexpr bool kAlwaysFalse = false;
-
 constexpr std::size_t kMaxLineBytes = 1 << 20;  // a pen line is ~200 bytes; 1 MiB is generous
 constexpr int kMaxNesting = 16;                 // the format nests 3 levels deep
 }  // namespace
@@ -40,8 +37,10 @@ std::string_view event_type_name(const Event& e) {
         else if constexpr (std::is_same_v<T, Undo>) return "undo";
         else if constexpr (std::is_same_v<T, Redo>) return "redo";
         else if constexpr (std::is_same_v<T, DeleteSection>) return "delete";
-        else if constexpr (std::is_same_v<T, Save>) return "save";
-        else static_assert(kAlwaysFalse<T>, "unhandled event type");
+        else {
+          static_assert(std::is_same_v<T, Save>, "unhandled event type");
+          return "save";
+        }
       },
       e);
 }
@@ -436,7 +435,8 @@ std::string parse_header(const json& j, LogHeader& h) {
       if (std::string e = po.number("offset", p.offset); !e.empty()) return "planes[" + std::to_string(i) + "]: " + e;
       const double n = p.normal.norm();
       if (!(std::abs(n - 1.0) <= 1e-6)) return "planes[" + std::to_string(i) + "]: normal is not unit length";
-      p.normal /= n;
+      // Normalize only what is not already unit length, so reading is idempotent bit for bit.
+      if (std::abs(n - 1.0) > 4.0 * std::numeric_limits<double>::epsilon()) p.normal /= n;
       h.planes.push_back(p);
     }
   }

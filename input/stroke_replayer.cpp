@@ -1,6 +1,9 @@
 // Stroke-log replay on a virtual clock, and grouping of pen samples into strokes.
 #include "input/stroke_replayer.h"
 
+#include <chrono>
+#include <memory>
+#include <thread>
 #include <utility>
 
 namespace ps {
@@ -61,6 +64,28 @@ std::vector<Stroke> group_strokes(const StrokeLog& log) {
 // === Replayer
 
 StrokeReplayer::StrokeReplayer(StrokeLog log) : log_(std::move(log)) {}
+
+StrokeReplayer::PaceFn StrokeReplayer::real_time_pacer(double speed) {
+  using Clock = std::chrono::steady_clock;
+  struct State {
+    bool started = false;
+    Clock::time_point start;
+    double first_t = 0.0;
+  };
+  auto st = std::make_shared<State>();
+  const double s = speed > 0.0 ? speed : 1.0;
+  return [st, s](double t_ms) {
+    if (!st->started) {
+      st->started = true;
+      st->start = Clock::now();
+      st->first_t = t_ms;
+      return;
+    }
+    const auto due = st->start + std::chrono::duration_cast<Clock::duration>(
+                                     std::chrono::duration<double, std::milli>((t_ms - st->first_t) / s));
+    std::this_thread::sleep_until(due);
+  };
+}
 
 void StrokeReplayer::rewind() {
   next_ = 0;

@@ -56,6 +56,11 @@ class StrokeReplayer {
 
   explicit StrokeReplayer(StrokeLog log);
 
+  // A pacing callback for a window: sleeps until `speed` x the wall-clock time since its first
+  // call reaches each event's time (speed 2 replays twice as fast). The only place replay
+  // looks at a clock, and only when asked.
+  static PaceFn real_time_pacer(double speed = 1.0);
+
   // Delivers the header (once) and every event with t <= t_ms; returns how many events.
   std::size_t replay_until(double t_ms, EventSink& sink);
   // Delivers everything left, calling `pace` (if set) with each event's time first.

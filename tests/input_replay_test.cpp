@@ -1,6 +1,7 @@
 // Replay on a virtual clock: determinism, stroke grouping, stepping and pacing.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <sstream>
 
 #include "input/input_state.h"
@@ -147,6 +148,19 @@ TEST(StrokeReplayer, GroupsSamplesIntoStrokes) {
   ASSERT_TRUE(cut);
   EXPECT_FALSE(cut->ended_with_up);
   EXPECT_FALSE(g.in_stroke());
+}
+
+TEST(StrokeReplayer, RealTimePacerNeverRunsAheadOfTheLog) {
+  StrokeLog log;
+  for (int i = 0; i <= 10; ++i) log.events.push_back(TimedEvent{100.0 + 6.0 * i, 0, Undo{}});  // 60 ms of log
+  TranscriptSink paced, fast;
+  StrokeReplayer r(log);
+  const auto begin = std::chrono::steady_clock::now();
+  r.replay_all(paced, StrokeReplayer::real_time_pacer(2.0));  // twice as fast: at least 30 ms
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+  EXPECT_GE(ms, 30.0);
+  replay(log, fast);
+  EXPECT_EQ(paced.out.str(), fast.out.str());  // pacing changes when, never what
 }
 
 TEST(InputState, AppliesPlaneCameraAndModeActions) {
