@@ -13,6 +13,8 @@
 #include <map>
 #include <string>
 
+#include "modeling/polyline_crossing.h"
+
 namespace ps {
 
 namespace {
@@ -46,7 +48,11 @@ std::string num(double x) {
   std::snprintf(buf, sizeof buf, "%.6g", x);
   return buf;
 }
-std::string fmt3(const Vec3& p) { return "(" + num(p.x()) + ", " + num(p.y()) + ", " + num(p.z()) + ")"; }
+std::string fmt3(const Vec3& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
+  return buf;
+}
 
 // === Crossings of one closed curve with one plane
 struct Crossing {
@@ -451,6 +457,19 @@ Result<bool> apply_handles(CurveState& cs, const std::vector<HandleRequest>& han
   return true;
 }
 
+// Even-odd point-in-polygon test (used only for points well away from the boundary).
+bool inside(const Vec2& p, const std::vector<Vec2>& poly) {
+  bool in = false;
+  const Index n = poly.size();
+  for (Index i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2& a = poly[i];
+    const Vec2& b = poly[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
+      in = !in;
+  }
+  return in;
+}
+
 }  // namespace
 
 // === Public entry points
@@ -594,6 +613,38 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
   }
   if (!converged)
     return R::error("curve sewing did not converge: " + worst_where + " still differ by " + num(worst_gap));
+
+  // === Rule 3 must survive sewing: no new self-crossings or crossings between curves on one plane
+  std::vector<std::vector<Vec2>> before(state.size());
+  for (Index c = 0; c < state.size(); ++c) {
+    if (!state[c].modified) continue;
+    const Frame& f = frames[static_cast<Index>(state[c].plane)];
+    for (const auto& p : in.curves[c].points) before[c].push_back(f.to2d(p));
+    if (!first_self_crossing(before[c]))
+      if (auto x = first_self_crossing(state[c].pts))
+        return R::error("sewing would make curve " + std::to_string(c) + " cross itself at " + fmt3(f.to3d(*x)) +
+                        "; redraw it closer to the highlighted points");
+  }
+  for (Index c = 0; c < state.size(); ++c)
+    for (Index d = c + 1; d < state.size(); ++d) {
+      if (state[c].plane != state[d].plane || (!state[c].modified && !state[d].modified)) continue;
+      const Frame& f = frames[static_cast<Index>(state[c].plane)];
+      auto old_pts = [&](Index k) {
+        std::vector<Vec2> v;
+        for (const auto& p : in.curves[k].points) v.push_back(f.to2d(p));
+        return v;
+      };
+      const auto oc = old_pts(c), od = old_pts(d);
+      if (first_crossing_between(oc, od)) continue;
+      if (auto x = first_crossing_between(state[c].pts, state[d].pts))
+        return R::error("sewing would make curves " + std::to_string(c) + " and " + std::to_string(d) +
+                        " cross at " + fmt3(f.to3d(*x)) + "; redraw them closer to the highlighted points");
+      // Nesting (rule 2) must not change either: one curve passing over the other entirely.
+      if (inside(od[0], oc) != inside(state[d].pts[0], state[c].pts) ||
+          inside(oc[0], od) != inside(state[c].pts[0], state[d].pts))
+        return R::error("sewing would change whether curves " + std::to_string(c) + " and " + std::to_string(d) +
+                        " are nested; redraw them closer to the highlighted points");
+    }
 
   // === Output
   SectionSet out = in;

@@ -332,6 +332,27 @@ TEST(StrokesSewing, TwentyCurveOrthogonalGrid) {
   EXPECT_EQ(rep.crossings.size(), 200u);
 }
 
+TEST(StrokesSewing, RefusesWhenSewingWouldMakeCurvesCross) {
+  // Two nested curves on z = 0 close to each other; the outer one must move inwards by 0.1 to
+  // meet the curve on x = 0, which pushes it across the inner one.
+  SectionSet in;
+  in.planes = {Plane{Z, 0.0}, Plane{X, 0.0}};
+  in.curves.push_back(ellipse(0, O, X, Y, {0, 0}, 1.0, 0.6, 80, 0.013));
+  in.curves.push_back(ellipse(0, O, X, Y, {0.13, 0.53}, 0.04, 0.04, 24, 0.01));  // under the top
+  in.curves.push_back(ellipse(1, O, Y, Z, {0, 0}, 0.4, 0.8, 70, 0.021));
+  auto r = sew_curves(in);
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.message().find("sewing would make curves 0 and 1 cross"), std::string::npos) << r.message();
+  // A smaller inner curve is passed over entirely: nesting would change.
+  in.curves[1] = ellipse(0, O, X, Y, {0.13, 0.54}, 0.025, 0.025, 24, 0.01);
+  auto n = sew_curves(in);
+  ASSERT_FALSE(n);
+  EXPECT_NE(n.message().find("would change whether curves 0 and 1 are nested"), std::string::npos) << n.message();
+  // Far enough inside, sewing is fine.
+  in.curves[1] = ellipse(0, O, X, Y, {0.3, 0.0}, 0.1, 0.1, 24, 0.01);
+  EXPECT_TRUE(sew_curves(in));
+}
+
 TEST(StrokesSewing, BadInputIsRefused) {
   SectionSet s = two_ellipses(0.6, 0.5);
   s.curves[1].plane = 5;
