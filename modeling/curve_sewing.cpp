@@ -199,6 +199,10 @@ void drop_grazes(std::vector<Crossing>& list, Index want, double tol,
       continue;
     }
     grazes.emplace_back(list[pred], cm);
+    // The crossing after cm now ends a longer arc (from pred's predecessor): its stored depth
+    // no longer describes that arc, so it may not be dropped as a graze.
+    for (Index q = 0; q < mine.size(); ++q)
+      if (mine[q] == best_m) list[mine[(q + 1) % mine.size()]].arc_depth = std::numeric_limits<double>::infinity();
     const Index hi = std::max(pred, best_m), lo = std::min(pred, best_m);
     list.erase(list.begin() + static_cast<std::ptrdiff_t>(hi));
     list.erase(list.begin() + static_cast<std::ptrdiff_t>(lo));
