@@ -396,8 +396,54 @@ Result<std::vector<Vec2>> deform_curve(const std::vector<Vec2>& x, const std::ma
 
 // Turns handle requests into constrained vertices (snapping or inserting points) and deforms.
 Result<bool> apply_handles(CurveState& cs, const std::vector<HandleRequest>& handles,
-                           const std::vector<Reflection>& reflections, const SewingParams& params) {
+                           const std::vector<Reflection>& reflections, const SewingParams& params,
+                           double same_target) {
   const Index n = cs.pts.size();
+  const auto dn = static_cast<double>(n);
+  // === Handles with one target (crossings with two planes moved to the planes' common point):
+  // one curve point serves them all, and the few points between those crossings are dropped.
+  std::vector<HandleRequest> hs;
+  std::vector<bool> removed(n, false);
+  {
+    auto pos = [](const Crossing& c) { return c.at_vertex ? static_cast<double>(c.vertex) : c.edge + c.t; };
+    std::vector<bool> used(handles.size(), false);
+    for (Index i = 0; i < handles.size(); ++i) {
+      if (used[i]) continue;
+      std::vector<Index> group{i};
+      for (Index j = i + 1; j < handles.size(); ++j)
+        if (!used[j] && (handles[j].target - handles[i].target).norm() <= same_target) group.push_back(j);
+      for (Index g : group) used[g] = true;
+      if (group.size() == 1) {
+        hs.push_back(handles[i]);
+        continue;
+      }
+      // The shortest arc holding all of them: it starts after the largest gap between
+      // consecutive positions (cyclically).
+      std::sort(group.begin(), group.end(),
+                [&](Index a, Index b) { return pos(handles[a].crossing) < pos(handles[b].crossing); });
+      const Index m = group.size();
+      Index after_gap = 0;
+      double largest = -1.0;
+      for (Index g = 0; g < m; ++g) {
+        const double gap = std::fmod(pos(handles[group[(g + 1) % m]].crossing) - pos(handles[group[g]].crossing) + dn, dn);
+        if (gap > largest) largest = gap, after_gap = (g + 1) % m;
+      }
+      const HandleRequest& first = handles[group[after_gap]];
+      const double start = pos(first.crossing);
+      const double span = dn - largest;
+      std::vector<Index> inner;
+      for (Index v = 0; v < n; ++v) {
+        const double d = std::fmod(static_cast<double>(v) - start + dn, dn);
+        if (d > 0.0 && d < span) inner.push_back(v);
+      }
+      if (inner.size() > 4) {  // not a local cluster: keep the handles apart
+        for (Index g : group) hs.push_back(handles[g]);
+        continue;
+      }
+      for (Index v : inner) removed[v] = true;
+      hs.push_back(first);
+    }
+  }
   // === Choose a vertex for every handle; crossings at an existing vertex claim it first.
   std::map<int, std::pair<Vec2, int>> vertex_targets;  // vertex -> (sum of targets, count)
   struct Insert {
@@ -406,20 +452,23 @@ Result<bool> apply_handles(CurveState& cs, const std::vector<HandleRequest>& han
     Vec2 target;
   };
   std::vector<Insert> inserts;
-  for (const auto& h : handles)
-    if (h.crossing.at_vertex) {
+  for (const auto& h : hs)
+    if (h.crossing.at_vertex && !removed[static_cast<Index>(h.crossing.vertex)]) {
       auto& slot = vertex_targets[h.crossing.vertex];
       slot.first += h.target;
       slot.second += 1;
     }
-  for (const auto& h : handles) {
-    if (h.crossing.at_vertex) continue;
+  for (const auto& h : hs) {
+    if (h.crossing.at_vertex) {
+      if (removed[static_cast<Index>(h.crossing.vertex)]) inserts.push_back({h.crossing.vertex, 0.0, h.target});
+      continue;
+    }
     const int e = h.crossing.edge;
     const double t = h.crossing.t;
     int snap = -1;
     if (t <= params.snap_fraction) snap = e;
     if (t >= 1.0 - params.snap_fraction) snap = static_cast<int>((static_cast<Index>(e) + 1) % n);
-    if (snap >= 0 && !vertex_targets.count(snap)) {
+    if (snap >= 0 && !removed[static_cast<Index>(snap)] && !vertex_targets.count(snap)) {
       vertex_targets[snap] = {h.target, 1};
     } else {
       inserts.push_back({e, t, h.target});
@@ -434,11 +483,11 @@ Result<bool> apply_handles(CurveState& cs, const std::vector<HandleRequest>& han
   Index next_insert = 0;
   for (Index k = 0; k < n; ++k) {
     new_index[k] = static_cast<int>(pts.size());
-    pts.push_back(cs.pts[k]);
+    if (!removed[k]) pts.push_back(cs.pts[k]);
     while (next_insert < inserts.size() && static_cast<Index>(inserts[next_insert].edge) == k) {
       const auto& ins = inserts[next_insert++];
       const Vec2 p = cs.pts[k] + ins.t * (cs.pts[(k + 1) % n] - cs.pts[k]);
-      if (p == pts.back() || (k + 1 == n && p == pts.front())) {
+      if (!pts.empty() && (p == pts.back() || (k + 1 == n && p == pts.front()))) {
         // Coincides with an existing point (t rounded to an end): constrain that one instead.
         fixed[k + 1 == n && p == pts.front() ? 0 : static_cast<int>(pts.size() - 1)] = ins.target;
         continue;
@@ -450,12 +499,17 @@ Result<bool> apply_handles(CurveState& cs, const std::vector<HandleRequest>& han
   for (const auto& [v, acc] : vertex_targets)
     fixed[new_index[static_cast<Index>(v)]] = acc.first / static_cast<double>(acc.second);
   for (const auto& r : reflections) {
+    if (removed[static_cast<Index>(r.vertex)]) continue;
     const int v = new_index[static_cast<Index>(r.vertex)];
     if (!fixed.count(v)) fixed[v] = r.target;
   }
+  for (Index k = 0; k < n; ++k)  // dropped points have no successor
+    if (removed[k]) new_index[k] = -1;
+  if (pts.size() < 3) return Result<bool>::error("too few points left after merging handles");
   auto solved = deform_curve(pts, fixed, params);
   if (!solved) return solved.status();
-  for (auto& oi : cs.original_index) oi = new_index[static_cast<Index>(oi)];
+  for (auto& oi : cs.original_index)
+    if (oi >= 0) oi = new_index[static_cast<Index>(oi)];
   cs.pts = std::move(*solved);
   cs.modified = true;
   return true;
@@ -540,6 +594,27 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
         break;
       }
 
+  // Common points of three planes holding curves (normals independent).
+  struct TriplePoint {
+    std::array<int, 3> planes;
+    Vec3 point;
+  };
+  std::vector<TriplePoint> triple_points;
+  for (Index i = 0; i < planes_used.size(); ++i)
+    for (Index j = i + 1; j < planes_used.size(); ++j)
+      for (Index k = j + 1; k < planes_used.size(); ++k) {
+        const std::array<int, 3> ids{planes_used[i], planes_used[j], planes_used[k]};
+        Eigen::Matrix3d M;
+        Vec3 rhs;
+        for (int r = 0; r < 3; ++r) {
+          M.row(r) = in.planes[static_cast<Index>(ids[static_cast<Index>(r)])].normal.transpose();
+          rhs[r] = in.planes[static_cast<Index>(ids[static_cast<Index>(r)])].offset;
+        }
+        if (std::abs(M.determinant()) < 1e-6) continue;
+        triple_points.push_back({ids, M.partialPivLu().solve(rhs)});
+      }
+  const double common_radius = params.common_point_radius * diag;
+
   bool converged = false;
   std::vector<Vec3> shared;
   double worst_gap = 0.0;
@@ -563,12 +638,21 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
         const Line2 la = line_in(frames[static_cast<Index>(pa)], B);
         const Line2 lb = line_in(frames[static_cast<Index>(pb)], A);
         for (const auto& [ca, cb] : m->matched) {
-          const Vec3 mid = 0.5 * (ca.p3 + cb.p3);
-          const double gap = (ca.p3 - cb.p3).norm();
+          Vec3 mid = 0.5 * (ca.p3 + cb.p3);
+          // Near the common point of Pa, Pb and a third plane with curves, the shared point is that
+          // common point: independent midpoints on the three lines through it would ask a curve
+          // to cross its two lines on the wrong sides of each other.
+          for (const auto& tp : triple_points)
+            if ((tp.planes[0] == pa || tp.planes[1] == pa || tp.planes[2] == pa) &&
+                (tp.planes[0] == pb || tp.planes[1] == pb || tp.planes[2] == pb) && (mid - tp.point).norm() <= common_radius) {
+              mid = tp.point;
+              break;
+            }
+          const double gap = std::max((ca.p3 - mid).norm(), (cb.p3 - mid).norm());
           shared.push_back(mid);
           if (gap > worst_gap) {
             worst_gap = gap;
-            worst_where = "curves " + std::to_string(ca.curve) + " and " + std::to_string(cb.curve) + " at " + fmt3(mid);
+            worst_where = "curves " + std::to_string(ca.curve) + " and " + std::to_string(cb.curve) + " near " + fmt3(mid);
           }
           const Vec2 ta = la.project(frames[static_cast<Index>(pa)].to2d(mid));
           const Vec2 tb = lb.project(frames[static_cast<Index>(pb)].to2d(mid));
@@ -611,7 +695,7 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
     // === Deform every curve once with all its handles
     for (Index c = 0; c < state.size(); ++c) {
       if (!active[c]) continue;
-      auto ok = apply_handles(state[c], handles[c], reflections[c], params);
+      auto ok = apply_handles(state[c], handles[c], reflections[c], params, match_tol);
       if (!ok) return R::error("curve " + std::to_string(c) + ": " + ok.message());
     }
   }
@@ -660,7 +744,8 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
     pts.reserve(cs.pts.size());
     for (const auto& p : cs.pts) pts.push_back(f.to3d(p));
     for (Index i = 0; i < cs.original_index.size(); ++i)
-      rep.max_displacement = std::max(rep.max_displacement,
+      if (cs.original_index[i] >= 0)
+        rep.max_displacement = std::max(rep.max_displacement,
                                       (pts[static_cast<Index>(cs.original_index[i])] - in.curves[c].points[i]).norm());
     out.curves[c].points = std::move(pts);
   }

@@ -145,6 +145,33 @@ TEST(StrokesSewing, ThreeMutuallyOrthogonalCurves) {
   EXPECT_LE(rep.max_displacement, 2.0 * rep.max_moved);
 }
 
+TEST(StrokesSewing, ThreeCurvesNearThePlanesCommonPoint) {
+  // Circles through (nearly) the origin on x = 0, y = 0 and z = 0: each pair of curves meets
+  // near the common point of the three planes, where every curve has two handles close together.
+  SectionSet in;
+  in.planes = {Plane{Z, 0.0}, Plane{X, 0.0}, Plane{Y, 0.0}};
+  const double r = std::sqrt(0.5);
+  in.curves.push_back(ellipse(0, O, X, Y, {0.52, 0.49}, r, r, 90, 0.01));
+  in.curves.push_back(ellipse(1, O, Y, Z, {0.48, 0.5}, r, r, 80, 0.02));
+  in.curves.push_back(ellipse(2, O, X, Z, {0.5, 0.53}, r, r, 70, 0.03));
+  SewingReport rep;
+  auto out = sew_curves(in, {}, &rep);
+  ASSERT_TRUE(out) << out.message();
+  EXPECT_LE(max_crossing_gap(*out), 1e-9 * diag(*out));
+  expect_on_planes(*out, 0.0);
+  ASSERT_EQ(rep.crossings.size(), 6u);
+  // The three pairs meet at the planes' common point; the far crossings stay apart.
+  int at_origin = 0;
+  for (const auto& p : rep.crossings) at_origin += p.norm() == 0.0;
+  EXPECT_EQ(at_origin, 3);
+  for (const auto& c : out->curves) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& p : c.points) nearest = std::min(nearest, p.norm());
+    EXPECT_EQ(nearest, 0.0);
+  }
+  EXPECT_LT(rep.max_displacement, 0.05);
+}
+
 TEST(StrokesSewing, CurvesWithFourCrossings) {
   SectionSet in;
   in.planes = {Plane{Z, 0.0}, Plane{X, 0.0}};
