@@ -270,6 +270,27 @@ TEST(StrokesSewing, CommutesWithTranslationAndScale) {
   }
 }
 
+TEST(StrokesSewing, CommutesWithRotation) {
+  // Rotated planes have other 2D frames (Plane::basis), but the result must be the same shape.
+  const SectionSet in = two_ellipses(0.6, 0.5);
+  auto base = sew_curves(in);
+  ASSERT_TRUE(base);
+  const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()) *
+                             Eigen::AngleAxisd(-1.9, Vec3(0.3, -1, 0.2).normalized())).toRotationMatrix();
+  SectionSet rotated = in;
+  for (auto& pl : rotated.planes) pl.normal = R * pl.normal;
+  for (auto& c : rotated.curves)
+    for (auto& p : c.points) p = R * p;
+  auto out = sew_curves(rotated);
+  ASSERT_TRUE(out) << out.message();
+  EXPECT_LE(max_crossing_gap(*out), 1e-9 * diag(*out));
+  for (std::size_t c = 0; c < base->curves.size(); ++c) {
+    ASSERT_EQ(out->curves[c].points.size(), base->curves[c].points.size());
+    for (std::size_t i = 0; i < base->curves[c].points.size(); ++i)
+      EXPECT_LE((out->curves[c].points[i] - R * base->curves[c].points[i]).norm(), 1e-9);
+  }
+}
+
 TEST(StrokesSewing, ReversedAndReorderedCurvesGiveTheSameResult) {
   const SectionSet in = two_ellipses(0.62, 0.5);
   auto base = sew_curves(in);
