@@ -567,6 +567,15 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
         return R::error("curve " + std::to_string(c) + " point " + std::to_string(i) + " is not finite");
   }
   SewingReport rep;
+  // Refusals after matching started still hand back the first round's handle moves, so the app
+  // can show which crossings were far off.
+  auto fail = [&](const std::string& message) {
+    if (report) {
+      for (const auto& h : rep.handles) rep.max_moved = std::max(rep.max_moved, h.moved);
+      *report = rep;
+    }
+    return R::error(message);
+  };
   const double diag = bounding_box(in.all_points()).diagonal();
   if (in.curves.empty() || !(diag > 0.0)) {
     if (report) *report = rep;
@@ -634,7 +643,13 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
         const Plane& B = in.planes[static_cast<Index>(pb)];
         if (parallel(A, B)) continue;
         auto m = match_planes(in, state, frames, pa, pb, eps, tangent_tol);
-        if (!m) return iter == 0 ? R(m.status()) : R::error("sewing made new crossings: " + m.message());
+        if (!m) {
+          if (iter == 0) return fail(m.message());
+          double far = 0.0;
+          for (const auto& h : rep.handles) far = std::max(far, h.moved);
+          return fail("the curves are too far off to sew (a crossing would move " + num(far) +
+                      "); sewing made new crossings: " + m.message());
+        }
         const Line2 la = line_in(frames[static_cast<Index>(pa)], B);
         const Line2 lb = line_in(frames[static_cast<Index>(pb)], A);
         for (const auto& [ca, cb] : m->matched) {
@@ -696,11 +711,11 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
     for (Index c = 0; c < state.size(); ++c) {
       if (!active[c]) continue;
       auto ok = apply_handles(state[c], handles[c], reflections[c], params, match_tol);
-      if (!ok) return R::error("curve " + std::to_string(c) + ": " + ok.message());
+      if (!ok) return fail("curve " + std::to_string(c) + ": " + ok.message());
     }
   }
   if (!converged)
-    return R::error("curve sewing did not converge: " + worst_where + " still differ by " + num(worst_gap));
+    return fail("curve sewing did not converge: " + worst_where + " still differ by " + num(worst_gap));
 
   // === Rule 3 must survive sewing: no new self-crossings or crossings between curves on one plane
   std::vector<std::vector<Vec2>> before(state.size());
@@ -710,7 +725,7 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
     for (const auto& p : in.curves[c].points) before[c].push_back(f.to2d(p));
     if (!first_self_crossing(before[c]))
       if (auto x = first_self_crossing(state[c].pts))
-        return R::error("sewing would make curve " + std::to_string(c) + " cross itself at " + fmt3(f.to3d(*x)) +
+        return fail("sewing would make curve " + std::to_string(c) + " cross itself at " + fmt3(f.to3d(*x)) +
                         "; redraw it closer to the highlighted points");
   }
   for (Index c = 0; c < state.size(); ++c)
@@ -725,12 +740,12 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
       const auto oc = old_pts(c), od = old_pts(d);
       if (first_crossing_between(oc, od)) continue;
       if (auto x = first_crossing_between(state[c].pts, state[d].pts))
-        return R::error("sewing would make curves " + std::to_string(c) + " and " + std::to_string(d) +
+        return fail("sewing would make curves " + std::to_string(c) + " and " + std::to_string(d) +
                         " cross at " + fmt3(f.to3d(*x)) + "; redraw them closer to the highlighted points");
       // Nesting (rule 2) must not change either: one curve passing over the other entirely.
       if (inside(od[0], oc) != inside(state[d].pts[0], state[c].pts) ||
           inside(oc[0], od) != inside(state[c].pts[0], state[d].pts))
-        return R::error("sewing would change whether curves " + std::to_string(c) + " and " + std::to_string(d) +
+        return fail("sewing would change whether curves " + std::to_string(c) + " and " + std::to_string(d) +
                         " are nested; redraw them closer to the highlighted points");
     }
 

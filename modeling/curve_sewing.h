@@ -73,7 +73,10 @@ struct SewingReport {
 };
 
 // Sew every pair of curves on non-parallel planes. Refuses (model unchanged) when crossing counts
-// differ: "curve 3 crosses the line shared with curve 5's plane at 2 points, curve 5 at 4 points".
+// differ: "curve 3 crosses the line shared with curve 5's plane at 2 points, curve 5 at 4 points";
+// when sewing would make new crossings (curves too far off), make a curve cross itself or another
+// curve on its plane, or change nesting. `report` is filled on success and, with the first round's
+// handle moves, on refusals after matching.
 Result<SectionSet> sew_curves(const SectionSet& sections, const SewingParams& params = {},
                               SewingReport* report = nullptr);
 

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdio>
+#include <cstdlib>
 #include <random>
 
 #include "modeling/curve_sewing.h"
@@ -412,4 +414,37 @@ TEST(StrokesSewing, BadInputIsRefused) {
   auto n = sew_curves(s);
   ASSERT_FALSE(n);
   EXPECT_NE(n.message().find("curve 0 point 3 is not finite"), std::string::npos) << n.message();
+}
+
+// Property test: random ellipses on random axis planes are either sewn (rule 4 holds, points on
+// their planes) or refused with a message naming curves; nothing crashes.
+TEST(StrokesSewing, RandomSetsAreSewnOrRefusedWithAMessage) {
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int sewn = 0, refused = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    SectionSet s;
+    const int planes = 2 + trial % 3;
+    for (int p = 0; p < planes; ++p) s.planes.push_back(Plane{p % 3 == 0 ? Z : (p % 3 == 1 ? X : Y), 0.3 * u(rng)});
+    for (int c = 0; c < planes + trial % 2; ++c) {
+      const int p = c % planes;
+      const Plane& pl = s.planes[static_cast<std::size_t>(p)];
+      Vec3 e1, e2;
+      pl.basis(e1, e2);
+      s.curves.push_back(ellipse(p, pl.offset * pl.normal, e1, e2, {0.2 * u(rng), 0.2 * u(rng)}, 0.8 + 0.2 * u(rng),
+                                 0.6 + 0.2 * u(rng), 30 + trial % 40, u(rng)));
+    }
+    auto out = sew_curves(s);
+    if (!out) {
+      ++refused;
+      EXPECT_NE(out.message().find("curve"), std::string::npos) << out.message();
+      if (std::getenv("STROKES_VERBOSE")) std::printf("trial %d: %s\n", trial, out.message().c_str());
+      continue;
+    }
+    ++sewn;
+    EXPECT_LE(max_crossing_gap(*out), 1e-9 * diag(*out)) << "trial " << trial;
+    expect_on_planes(*out, 0.0);
+  }
+  EXPECT_GT(sewn, 0);
+  std::printf("random sets: %d sewn, %d refused\n", sewn, refused);
 }
