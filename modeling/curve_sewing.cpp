@@ -13,6 +13,8 @@
 #include <map>
 #include <string>
 
+#include "modeling/polyline_crossing.h"
+
 namespace ps {
 
 namespace {
@@ -46,7 +48,11 @@ std::string num(double x) {
   std::snprintf(buf, sizeof buf, "%.6g", x);
   return buf;
 }
-std::string fmt3(const Vec3& p) { return "(" + num(p.x()) + ", " + num(p.y()) + ", " + num(p.z()) + ")"; }
+std::string fmt3(const Vec3& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
+  return buf;
+}
 
 // === Crossings of one closed curve with one plane
 struct Crossing {
@@ -193,6 +199,10 @@ void drop_grazes(std::vector<Crossing>& list, Index want, double tol,
       continue;
     }
     grazes.emplace_back(list[pred], cm);
+    // The crossing after cm now ends a longer arc (from pred's predecessor): its stored depth
+    // no longer describes that arc, so it may not be dropped as a graze.
+    for (Index q = 0; q < mine.size(); ++q)
+      if (mine[q] == best_m) list[mine[(q + 1) % mine.size()]].arc_depth = std::numeric_limits<double>::infinity();
     const Index hi = std::max(pred, best_m), lo = std::min(pred, best_m);
     list.erase(list.begin() + static_cast<std::ptrdiff_t>(hi));
     list.erase(list.begin() + static_cast<std::ptrdiff_t>(lo));
@@ -386,8 +396,54 @@ Result<std::vector<Vec2>> deform_curve(const std::vector<Vec2>& x, const std::ma
 
 // Turns handle requests into constrained vertices (snapping or inserting points) and deforms.
 Result<bool> apply_handles(CurveState& cs, const std::vector<HandleRequest>& handles,
-                           const std::vector<Reflection>& reflections, const SewingParams& params) {
+                           const std::vector<Reflection>& reflections, const SewingParams& params,
+                           double same_target) {
   const Index n = cs.pts.size();
+  const auto dn = static_cast<double>(n);
+  // === Handles with one target (crossings with two planes moved to the planes' common point):
+  // one curve point serves them all, and the few points between those crossings are dropped.
+  std::vector<HandleRequest> hs;
+  std::vector<bool> removed(n, false);
+  {
+    auto pos = [](const Crossing& c) { return c.at_vertex ? static_cast<double>(c.vertex) : c.edge + c.t; };
+    std::vector<bool> used(handles.size(), false);
+    for (Index i = 0; i < handles.size(); ++i) {
+      if (used[i]) continue;
+      std::vector<Index> group{i};
+      for (Index j = i + 1; j < handles.size(); ++j)
+        if (!used[j] && (handles[j].target - handles[i].target).norm() <= same_target) group.push_back(j);
+      for (Index g : group) used[g] = true;
+      if (group.size() == 1) {
+        hs.push_back(handles[i]);
+        continue;
+      }
+      // The shortest arc holding all of them: it starts after the largest gap between
+      // consecutive positions (cyclically).
+      std::sort(group.begin(), group.end(),
+                [&](Index a, Index b) { return pos(handles[a].crossing) < pos(handles[b].crossing); });
+      const Index m = group.size();
+      Index after_gap = 0;
+      double largest = -1.0;
+      for (Index g = 0; g < m; ++g) {
+        const double gap = std::fmod(pos(handles[group[(g + 1) % m]].crossing) - pos(handles[group[g]].crossing) + dn, dn);
+        if (gap > largest) largest = gap, after_gap = (g + 1) % m;
+      }
+      const HandleRequest& first = handles[group[after_gap]];
+      const double start = pos(first.crossing);
+      const double span = dn - largest;
+      std::vector<Index> inner;
+      for (Index v = 0; v < n; ++v) {
+        const double d = std::fmod(static_cast<double>(v) - start + dn, dn);
+        if (d > 0.0 && d < span) inner.push_back(v);
+      }
+      if (inner.size() > 4) {  // not a local cluster: keep the handles apart
+        for (Index g : group) hs.push_back(handles[g]);
+        continue;
+      }
+      for (Index v : inner) removed[v] = true;
+      hs.push_back(first);
+    }
+  }
   // === Choose a vertex for every handle; crossings at an existing vertex claim it first.
   std::map<int, std::pair<Vec2, int>> vertex_targets;  // vertex -> (sum of targets, count)
   struct Insert {
@@ -396,20 +452,23 @@ Result<bool> apply_handles(CurveState& cs, const std::vector<HandleRequest>& han
     Vec2 target;
   };
   std::vector<Insert> inserts;
-  for (const auto& h : handles)
-    if (h.crossing.at_vertex) {
+  for (const auto& h : hs)
+    if (h.crossing.at_vertex && !removed[static_cast<Index>(h.crossing.vertex)]) {
       auto& slot = vertex_targets[h.crossing.vertex];
       slot.first += h.target;
       slot.second += 1;
     }
-  for (const auto& h : handles) {
-    if (h.crossing.at_vertex) continue;
+  for (const auto& h : hs) {
+    if (h.crossing.at_vertex) {
+      if (removed[static_cast<Index>(h.crossing.vertex)]) inserts.push_back({h.crossing.vertex, 0.0, h.target});
+      continue;
+    }
     const int e = h.crossing.edge;
     const double t = h.crossing.t;
     int snap = -1;
     if (t <= params.snap_fraction) snap = e;
     if (t >= 1.0 - params.snap_fraction) snap = static_cast<int>((static_cast<Index>(e) + 1) % n);
-    if (snap >= 0 && !vertex_targets.count(snap)) {
+    if (snap >= 0 && !removed[static_cast<Index>(snap)] && !vertex_targets.count(snap)) {
       vertex_targets[snap] = {h.target, 1};
     } else {
       inserts.push_back({e, t, h.target});
@@ -424,11 +483,11 @@ Result<bool> apply_handles(CurveState& cs, const std::vector<HandleRequest>& han
   Index next_insert = 0;
   for (Index k = 0; k < n; ++k) {
     new_index[k] = static_cast<int>(pts.size());
-    pts.push_back(cs.pts[k]);
+    if (!removed[k]) pts.push_back(cs.pts[k]);
     while (next_insert < inserts.size() && static_cast<Index>(inserts[next_insert].edge) == k) {
       const auto& ins = inserts[next_insert++];
       const Vec2 p = cs.pts[k] + ins.t * (cs.pts[(k + 1) % n] - cs.pts[k]);
-      if (p == pts.back() || (k + 1 == n && p == pts.front())) {
+      if (!pts.empty() && (p == pts.back() || (k + 1 == n && p == pts.front()))) {
         // Coincides with an existing point (t rounded to an end): constrain that one instead.
         fixed[k + 1 == n && p == pts.front() ? 0 : static_cast<int>(pts.size() - 1)] = ins.target;
         continue;
@@ -440,15 +499,33 @@ Result<bool> apply_handles(CurveState& cs, const std::vector<HandleRequest>& han
   for (const auto& [v, acc] : vertex_targets)
     fixed[new_index[static_cast<Index>(v)]] = acc.first / static_cast<double>(acc.second);
   for (const auto& r : reflections) {
+    if (removed[static_cast<Index>(r.vertex)]) continue;
     const int v = new_index[static_cast<Index>(r.vertex)];
     if (!fixed.count(v)) fixed[v] = r.target;
   }
+  for (Index k = 0; k < n; ++k)  // dropped points have no successor
+    if (removed[k]) new_index[k] = -1;
+  if (pts.size() < 3) return Result<bool>::error("too few points left after merging handles");
   auto solved = deform_curve(pts, fixed, params);
   if (!solved) return solved.status();
-  for (auto& oi : cs.original_index) oi = new_index[static_cast<Index>(oi)];
+  for (auto& oi : cs.original_index)
+    if (oi >= 0) oi = new_index[static_cast<Index>(oi)];
   cs.pts = std::move(*solved);
   cs.modified = true;
   return true;
+}
+
+// Even-odd point-in-polygon test (used only for points well away from the boundary).
+bool inside(const Vec2& p, const std::vector<Vec2>& poly) {
+  bool in = false;
+  const Index n = poly.size();
+  for (Index i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2& a = poly[i];
+    const Vec2& b = poly[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
+      in = !in;
+  }
+  return in;
 }
 
 }  // namespace
@@ -490,6 +567,15 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
         return R::error("curve " + std::to_string(c) + " point " + std::to_string(i) + " is not finite");
   }
   SewingReport rep;
+  // Refusals after matching started still hand back the first round's handle moves, so the app
+  // can show which crossings were far off.
+  auto fail = [&](const std::string& message) {
+    if (report) {
+      for (const auto& h : rep.handles) rep.max_moved = std::max(rep.max_moved, h.moved);
+      *report = rep;
+    }
+    return R::error(message);
+  };
   const double diag = bounding_box(in.all_points()).diagonal();
   if (in.curves.empty() || !(diag > 0.0)) {
     if (report) *report = rep;
@@ -517,6 +603,27 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
         break;
       }
 
+  // Common points of three planes holding curves (normals independent).
+  struct TriplePoint {
+    std::array<int, 3> planes;
+    Vec3 point;
+  };
+  std::vector<TriplePoint> triple_points;
+  for (Index i = 0; i < planes_used.size(); ++i)
+    for (Index j = i + 1; j < planes_used.size(); ++j)
+      for (Index k = j + 1; k < planes_used.size(); ++k) {
+        const std::array<int, 3> ids{planes_used[i], planes_used[j], planes_used[k]};
+        Eigen::Matrix3d M;
+        Vec3 rhs;
+        for (int r = 0; r < 3; ++r) {
+          M.row(r) = in.planes[static_cast<Index>(ids[static_cast<Index>(r)])].normal.transpose();
+          rhs[r] = in.planes[static_cast<Index>(ids[static_cast<Index>(r)])].offset;
+        }
+        if (std::abs(M.determinant()) < 1e-6) continue;
+        triple_points.push_back({ids, M.partialPivLu().solve(rhs)});
+      }
+  const double common_radius = params.common_point_radius * diag;
+
   bool converged = false;
   std::vector<Vec3> shared;
   double worst_gap = 0.0;
@@ -536,16 +643,31 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
         const Plane& B = in.planes[static_cast<Index>(pb)];
         if (parallel(A, B)) continue;
         auto m = match_planes(in, state, frames, pa, pb, eps, tangent_tol);
-        if (!m) return iter == 0 ? R(m.status()) : R::error("sewing made new crossings: " + m.message());
+        if (!m) {
+          if (iter == 0) return fail(m.message());
+          double far = 0.0;
+          for (const auto& h : rep.handles) far = std::max(far, h.moved);
+          return fail("the curves are too far off to sew (a crossing would move " + num(far) +
+                      "); sewing made new crossings: " + m.message());
+        }
         const Line2 la = line_in(frames[static_cast<Index>(pa)], B);
         const Line2 lb = line_in(frames[static_cast<Index>(pb)], A);
         for (const auto& [ca, cb] : m->matched) {
-          const Vec3 mid = 0.5 * (ca.p3 + cb.p3);
-          const double gap = (ca.p3 - cb.p3).norm();
+          Vec3 mid = 0.5 * (ca.p3 + cb.p3);
+          // Near the common point of Pa, Pb and a third plane with curves, the shared point is that
+          // common point: independent midpoints on the three lines through it would ask a curve
+          // to cross its two lines on the wrong sides of each other.
+          for (const auto& tp : triple_points)
+            if ((tp.planes[0] == pa || tp.planes[1] == pa || tp.planes[2] == pa) &&
+                (tp.planes[0] == pb || tp.planes[1] == pb || tp.planes[2] == pb) && (mid - tp.point).norm() <= common_radius) {
+              mid = tp.point;
+              break;
+            }
+          const double gap = std::max((ca.p3 - mid).norm(), (cb.p3 - mid).norm());
           shared.push_back(mid);
           if (gap > worst_gap) {
             worst_gap = gap;
-            worst_where = "curves " + std::to_string(ca.curve) + " and " + std::to_string(cb.curve) + " at " + fmt3(mid);
+            worst_where = "curves " + std::to_string(ca.curve) + " and " + std::to_string(cb.curve) + " near " + fmt3(mid);
           }
           const Vec2 ta = la.project(frames[static_cast<Index>(pa)].to2d(mid));
           const Vec2 tb = lb.project(frames[static_cast<Index>(pb)].to2d(mid));
@@ -588,12 +710,44 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
     // === Deform every curve once with all its handles
     for (Index c = 0; c < state.size(); ++c) {
       if (!active[c]) continue;
-      auto ok = apply_handles(state[c], handles[c], reflections[c], params);
-      if (!ok) return R::error("curve " + std::to_string(c) + ": " + ok.message());
+      auto ok = apply_handles(state[c], handles[c], reflections[c], params, match_tol);
+      if (!ok) return fail("curve " + std::to_string(c) + ": " + ok.message());
     }
   }
   if (!converged)
-    return R::error("curve sewing did not converge: " + worst_where + " still differ by " + num(worst_gap));
+    return fail("curve sewing did not converge: " + worst_where + " still differ by " + num(worst_gap));
+
+  // === Rule 3 must survive sewing: no new self-crossings or crossings between curves on one plane
+  std::vector<std::vector<Vec2>> before(state.size());
+  for (Index c = 0; c < state.size(); ++c) {
+    if (!state[c].modified) continue;
+    const Frame& f = frames[static_cast<Index>(state[c].plane)];
+    for (const auto& p : in.curves[c].points) before[c].push_back(f.to2d(p));
+    if (!first_self_crossing(before[c]))
+      if (auto x = first_self_crossing(state[c].pts))
+        return fail("sewing would make curve " + std::to_string(c) + " cross itself at " + fmt3(f.to3d(*x)) +
+                        "; redraw it closer to the highlighted points");
+  }
+  for (Index c = 0; c < state.size(); ++c)
+    for (Index d = c + 1; d < state.size(); ++d) {
+      if (state[c].plane != state[d].plane || (!state[c].modified && !state[d].modified)) continue;
+      const Frame& f = frames[static_cast<Index>(state[c].plane)];
+      auto old_pts = [&](Index k) {
+        std::vector<Vec2> v;
+        for (const auto& p : in.curves[k].points) v.push_back(f.to2d(p));
+        return v;
+      };
+      const auto oc = old_pts(c), od = old_pts(d);
+      if (first_crossing_between(oc, od)) continue;
+      if (auto x = first_crossing_between(state[c].pts, state[d].pts))
+        return fail("sewing would make curves " + std::to_string(c) + " and " + std::to_string(d) +
+                        " cross at " + fmt3(f.to3d(*x)) + "; redraw them closer to the highlighted points");
+      // Nesting (rule 2) must not change either: one curve passing over the other entirely.
+      if (inside(od[0], oc) != inside(state[d].pts[0], state[c].pts) ||
+          inside(oc[0], od) != inside(state[c].pts[0], state[d].pts))
+        return fail("sewing would change whether curves " + std::to_string(c) + " and " + std::to_string(d) +
+                        " are nested; redraw them closer to the highlighted points");
+    }
 
   // === Output
   SectionSet out = in;
@@ -605,7 +759,8 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
     pts.reserve(cs.pts.size());
     for (const auto& p : cs.pts) pts.push_back(f.to3d(p));
     for (Index i = 0; i < cs.original_index.size(); ++i)
-      rep.max_displacement = std::max(rep.max_displacement,
+      if (cs.original_index[i] >= 0)
+        rep.max_displacement = std::max(rep.max_displacement,
                                       (pts[static_cast<Index>(cs.original_index[i])] - in.curves[c].points[i]).norm());
     out.curves[c].points = std::move(pts);
   }

@@ -47,6 +47,10 @@ struct SewingParams {
   // Near-tangent crossing pairs (relative to the bounding-box diagonal) that may be ignored when
   // the crossing counts differ.
   double tangent_tolerance = 5e-3;
+  // Shared points closer than common_point_radius * diagonal to the common point of their two
+  // planes and a third plane holding curves are moved to that common point (all curves then
+  // pass through it); see docs/strokes.md.
+  double common_point_radius = 0.02;
   // Crossings that agree within match_tolerance * diagonal need no sewing.
   double match_tolerance = 1e-10;
   int max_iterations = 4;
@@ -63,13 +67,16 @@ struct SewingReport {
   std::vector<Handle> handles;   // first iteration's handle moves (what the user drew off)
   std::vector<Vec3> crossings;   // the shared points after sewing, each listed once per plane pair
   double max_moved = 0.0;        // largest handle move
-  double max_displacement = 0.0; // largest move of any curve point
+  double max_displacement = 0.0; // largest move of an input curve point (dropped ones excluded)
   int iterations = 0;
   int tangents_removed = 0;      // near-tangent crossing pairs pushed off a plane
 };
 
 // Sew every pair of curves on non-parallel planes. Refuses (model unchanged) when crossing counts
-// differ: "curve 3 crosses the line shared with curve 5's plane at 2 points, curve 5 at 4 points".
+// differ: "curve 3 crosses the line shared with curve 5's plane at 2 points, curve 5 at 4 points";
+// when sewing would make new crossings (curves too far off), make a curve cross itself or another
+// curve on its plane, or change nesting. `report` is filled on success and, with the first round's
+// handle moves, on refusals after matching.
 Result<SectionSet> sew_curves(const SectionSet& sections, const SewingParams& params = {},
                               SewingReport* report = nullptr);
 

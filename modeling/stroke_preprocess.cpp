@@ -271,17 +271,17 @@ Result<std::vector<Vec3>> lift_stroke(const std::vector<Vec2>& window_points, co
   out.reserve(window_points.size());
   for (std::size_t i = 0; i < window_points.size(); ++i) {
     const Vec2& w = window_points[i];
-    const std::string where = "stroke point " + std::to_string(i) + " at " + fmt_point(w);
+    auto where = [&] { return "stroke point " + std::to_string(i) + " at " + fmt_point(w); };
     if (!w.allFinite()) return R::error("stroke point " + std::to_string(i) + " is not finite");
     const Ray r = camera.ray(w.x(), w.y());
     const double denom = plane.normal.dot(r.direction);
-    if (std::abs(denom) < 1e-9) return R::error(where + ": its view ray runs parallel to the plane (the plane is seen edge-on)");
+    if (std::abs(denom) < 1e-9) return R::error(where() + ": its view ray runs parallel to the plane (the plane is seen edge-on)");
     const double t = (plane.offset - plane.normal.dot(r.origin)) / denom;
-    if (!std::isfinite(t)) return R::error(where + ": its view ray does not meet the plane");
-    if (t < 0.0) return R::error(where + ": the plane is behind the eye there");
+    if (!std::isfinite(t)) return R::error(where() + ": its view ray does not meet the plane");
+    if (t < 0.0) return R::error(where() + ": the plane is behind the eye there");
     const double depth = t * r.direction.dot(forward);
     if (depth > camera.far_plane)
-      return R::error(where + ": the view ray meets the plane beyond the far plane (depth " + fmt("%.3g", depth) +
+      return R::error(where() + ": the view ray meets the plane beyond the far plane (depth " + fmt("%.3g", depth) +
                       ", far " + fmt("%.3g", camera.far_plane) + "); the plane is seen too obliquely there");
     out.push_back(plane.project(r.origin + t * r.direction));
   }

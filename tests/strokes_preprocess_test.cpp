@@ -338,3 +338,45 @@ TEST(StrokesLift, PlaneStrokePipelineRefusesSelfCrossing) {
   ASSERT_EQ(ok->points.size(), ok->window_points.size());
   for (const auto& p : ok->points) EXPECT_EQ(p.z(), 0.0);
 }
+
+// === Property test: random strokes are either accepted with valid output or refused with a
+// message; nothing crashes (this also runs under ASan/UBSan in CI).
+TEST(StrokesPreprocess, RandomStrokesAreAcceptedValidOrRefusedWithAMessage) {
+  std::mt19937 rng(2024);
+  std::uniform_int_distribution<int> count(0, 300);
+  std::normal_distribution<double> step(0.0, 6.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const Camera cam;
+  const Plane plane{Vec3::UnitY(), 0.0};
+  int accepted = 0, refused = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const double scale = trial % 10 == 0 ? 1e6 : (trial % 10 == 1 ? 1e-3 : 1.0);
+    std::vector<Vec2> raw;
+    Vec2 p(640 * unit(rng), 400 + 400 * unit(rng));
+    const int n = count(rng);
+    for (int i = 0; i < n; ++i) {
+      p += scale * Vec2(step(rng), step(rng));
+      raw.push_back(p);
+    }
+    if (trial % 3 == 0 && raw.size() > 10) raw.push_back(raw.front());  // try to close it
+    auto r = prepare_plane_stroke(raw, cam, plane);
+    if (!r) {
+      ++refused;
+      EXPECT_FALSE(r.message().empty());
+      continue;
+    }
+    ++accepted;
+    ASSERT_GE(r->window_points.size(), 3u);
+    ASSERT_EQ(r->points.size(), r->window_points.size());
+    for (const auto& q : r->points) {
+      ASSERT_TRUE(q.allFinite());
+      ASSERT_NEAR(plane.signed_distance(q), 0.0, 1e-9 * (1.0 + q.norm()));
+    }
+    if (r->closed) {
+      EXPECT_FALSE(first_self_crossing(r->window_points));
+      EXPECT_NE(r->window_points.front(), r->window_points.back());
+    }
+  }
+  EXPECT_GT(accepted, 0);
+  EXPECT_GT(refused, 0);
+}

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdio>
+#include <cstdlib>
 #include <random>
 
 #include "modeling/curve_sewing.h"
@@ -145,6 +147,33 @@ TEST(StrokesSewing, ThreeMutuallyOrthogonalCurves) {
   EXPECT_LE(rep.max_displacement, 2.0 * rep.max_moved);
 }
 
+TEST(StrokesSewing, ThreeCurvesNearThePlanesCommonPoint) {
+  // Circles through (nearly) the origin on x = 0, y = 0 and z = 0: each pair of curves meets
+  // near the common point of the three planes, where every curve has two handles close together.
+  SectionSet in;
+  in.planes = {Plane{Z, 0.0}, Plane{X, 0.0}, Plane{Y, 0.0}};
+  const double r = std::sqrt(0.5);
+  in.curves.push_back(ellipse(0, O, X, Y, {0.52, 0.49}, r, r, 90, 0.01));
+  in.curves.push_back(ellipse(1, O, Y, Z, {0.48, 0.5}, r, r, 80, 0.02));
+  in.curves.push_back(ellipse(2, O, X, Z, {0.5, 0.53}, r, r, 70, 0.03));
+  SewingReport rep;
+  auto out = sew_curves(in, {}, &rep);
+  ASSERT_TRUE(out) << out.message();
+  EXPECT_LE(max_crossing_gap(*out), 1e-9 * diag(*out));
+  expect_on_planes(*out, 0.0);
+  ASSERT_EQ(rep.crossings.size(), 6u);
+  // The three pairs meet at the planes' common point; the far crossings stay apart.
+  int at_origin = 0;
+  for (const auto& p : rep.crossings) at_origin += p.norm() == 0.0;
+  EXPECT_EQ(at_origin, 3);
+  for (const auto& c : out->curves) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& p : c.points) nearest = std::min(nearest, p.norm());
+    EXPECT_EQ(nearest, 0.0);
+  }
+  EXPECT_LT(rep.max_displacement, 0.05);
+}
+
 TEST(StrokesSewing, CurvesWithFourCrossings) {
   SectionSet in;
   in.planes = {Plane{Z, 0.0}, Plane{X, 0.0}};
@@ -243,6 +272,27 @@ TEST(StrokesSewing, CommutesWithTranslationAndScale) {
   }
 }
 
+TEST(StrokesSewing, CommutesWithRotation) {
+  // Rotated planes have other 2D frames (Plane::basis), but the result must be the same shape.
+  const SectionSet in = two_ellipses(0.6, 0.5);
+  auto base = sew_curves(in);
+  ASSERT_TRUE(base);
+  const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()) *
+                             Eigen::AngleAxisd(-1.9, Vec3(0.3, -1, 0.2).normalized())).toRotationMatrix();
+  SectionSet rotated = in;
+  for (auto& pl : rotated.planes) pl.normal = R * pl.normal;
+  for (auto& c : rotated.curves)
+    for (auto& p : c.points) p = R * p;
+  auto out = sew_curves(rotated);
+  ASSERT_TRUE(out) << out.message();
+  EXPECT_LE(max_crossing_gap(*out), 1e-9 * diag(*out));
+  for (std::size_t c = 0; c < base->curves.size(); ++c) {
+    ASSERT_EQ(out->curves[c].points.size(), base->curves[c].points.size());
+    for (std::size_t i = 0; i < base->curves[c].points.size(); ++i)
+      EXPECT_LE((out->curves[c].points[i] - R * base->curves[c].points[i]).norm(), 1e-9);
+  }
+}
+
 TEST(StrokesSewing, ReversedAndReorderedCurvesGiveTheSameResult) {
   const SectionSet in = two_ellipses(0.62, 0.5);
   auto base = sew_curves(in);
@@ -332,6 +382,27 @@ TEST(StrokesSewing, TwentyCurveOrthogonalGrid) {
   EXPECT_EQ(rep.crossings.size(), 200u);
 }
 
+TEST(StrokesSewing, RefusesWhenSewingWouldMakeCurvesCross) {
+  // Two nested curves on z = 0 close to each other; the outer one must move inwards by 0.1 to
+  // meet the curve on x = 0, which pushes it across the inner one.
+  SectionSet in;
+  in.planes = {Plane{Z, 0.0}, Plane{X, 0.0}};
+  in.curves.push_back(ellipse(0, O, X, Y, {0, 0}, 1.0, 0.6, 80, 0.013));
+  in.curves.push_back(ellipse(0, O, X, Y, {0.13, 0.53}, 0.04, 0.04, 24, 0.01));  // under the top
+  in.curves.push_back(ellipse(1, O, Y, Z, {0, 0}, 0.4, 0.8, 70, 0.021));
+  auto r = sew_curves(in);
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.message().find("sewing would make curves 0 and 1 cross"), std::string::npos) << r.message();
+  // A smaller inner curve is passed over entirely: nesting would change.
+  in.curves[1] = ellipse(0, O, X, Y, {0.13, 0.54}, 0.025, 0.025, 24, 0.01);
+  auto n = sew_curves(in);
+  ASSERT_FALSE(n);
+  EXPECT_NE(n.message().find("would change whether curves 0 and 1 are nested"), std::string::npos) << n.message();
+  // Far enough inside, sewing is fine.
+  in.curves[1] = ellipse(0, O, X, Y, {0.3, 0.0}, 0.1, 0.1, 24, 0.01);
+  EXPECT_TRUE(sew_curves(in));
+}
+
 TEST(StrokesSewing, BadInputIsRefused) {
   SectionSet s = two_ellipses(0.6, 0.5);
   s.curves[1].plane = 5;
@@ -343,4 +414,37 @@ TEST(StrokesSewing, BadInputIsRefused) {
   auto n = sew_curves(s);
   ASSERT_FALSE(n);
   EXPECT_NE(n.message().find("curve 0 point 3 is not finite"), std::string::npos) << n.message();
+}
+
+// Property test: random ellipses on random axis planes are either sewn (rule 4 holds, points on
+// their planes) or refused with a message naming curves; nothing crashes.
+TEST(StrokesSewing, RandomSetsAreSewnOrRefusedWithAMessage) {
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int sewn = 0, refused = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    SectionSet s;
+    const int planes = 2 + trial % 3;
+    for (int p = 0; p < planes; ++p) s.planes.push_back(Plane{p % 3 == 0 ? Z : (p % 3 == 1 ? X : Y), 0.3 * u(rng)});
+    for (int c = 0; c < planes + trial % 2; ++c) {
+      const int p = c % planes;
+      const Plane& pl = s.planes[static_cast<std::size_t>(p)];
+      Vec3 e1, e2;
+      pl.basis(e1, e2);
+      s.curves.push_back(ellipse(p, pl.offset * pl.normal, e1, e2, {0.2 * u(rng), 0.2 * u(rng)}, 0.8 + 0.2 * u(rng),
+                                 0.6 + 0.2 * u(rng), 30 + trial % 40, u(rng)));
+    }
+    auto out = sew_curves(s);
+    if (!out) {
+      ++refused;
+      EXPECT_NE(out.message().find("curve"), std::string::npos) << out.message();
+      if (std::getenv("STROKES_VERBOSE")) std::printf("trial %d: %s\n", trial, out.message().c_str());
+      continue;
+    }
+    ++sewn;
+    EXPECT_LE(max_crossing_gap(*out), 1e-9 * diag(*out)) << "trial " << trial;
+    expect_on_planes(*out, 0.0);
+  }
+  EXPECT_GT(sewn, 0);
+  std::printf("random sets: %d sewn, %d refused\n", sewn, refused);
 }
