@@ -328,25 +328,33 @@ int sew_crossings(SectionSet& s, double tolerance, std::vector<std::string>* war
   const double snap = 1e-6 * box.diagonal();
   std::vector<std::vector<Edit>> edits(s.curves.size());
   int shared = 0;
-  for (std::size_t a = 0; a < s.curves.size(); ++a) {
-    for (std::size_t bc = a + 1; bc < s.curves.size(); ++bc) {
-      const Plane& pa = s.planes[uz(s.curves[a].plane)];
-      const Plane& pb = s.planes[uz(s.curves[bc].plane)];
+  // Per pair of planes (one on axis k, one on axis j != k): all crossings of the first plane's
+  // curves with the second plane, and vice versa, matched as mutual nearest along the line.
+  for (std::size_t pa_i = 0; pa_i < s.planes.size(); ++pa_i) {
+    for (std::size_t pb_i = pa_i + 1; pb_i < s.planes.size(); ++pb_i) {
+      const Plane& pa = s.planes[pa_i];
+      const Plane& pb = s.planes[pb_i];
       const int k = pa.axis(), j = pb.axis();
       if (k < 0 || j < 0 || k == j) continue;
       const int f = 3 - k - j;
       std::vector<Crossing> ca, cb;
-      crossings_of(s, static_cast<int>(a), j, pb.offset, f, snap, ca);
-      crossings_of(s, static_cast<int>(bc), k, pa.offset, f, snap, cb);
+      for (std::size_t c = 0; c < s.curves.size(); ++c) {
+        if (uz(s.curves[c].plane) == pa_i) crossings_of(s, static_cast<int>(c), j, pb.offset, f, snap, ca);
+        if (uz(s.curves[c].plane) == pb_i) crossings_of(s, static_cast<int>(c), k, pa.offset, f, snap, cb);
+      }
       if (ca.empty() && cb.empty()) continue;
-      // Mutual nearest partners closer than the tolerance share one point.
-      for (auto& x : ca) {
+      auto nearest = [](const std::vector<Crossing>& list, double v) {
         int best = -1;
-        for (std::size_t y = 0; y < cb.size(); ++y)
-          if (!cb[y].used && (best < 0 || std::abs(cb[y].free - x.free) < std::abs(cb[uz(best)].free - x.free)))
-            best = static_cast<int>(y);
-        if (best < 0 || std::abs(cb[uz(best)].free - x.free) > tolerance) continue;
-        Crossing& y = cb[uz(best)];
+        for (std::size_t y = 0; y < list.size(); ++y)
+          if (best < 0 || std::abs(list[y].free - v) < std::abs(list[uz(best)].free - v)) best = static_cast<int>(y);
+        return best;
+      };
+      for (std::size_t xi = 0; xi < ca.size(); ++xi) {
+        Crossing& x = ca[xi];
+        const int yi = nearest(cb, x.free);
+        if (yi < 0 || nearest(ca, cb[uz(yi)].free) != static_cast<int>(xi)) continue;
+        Crossing& y = cb[uz(yi)];
+        if (std::abs(y.free - x.free) > tolerance) continue;
         x.used = y.used = true;
         Vec3 p;
         p[k] = pa.offset;
@@ -354,19 +362,24 @@ int sew_crossings(SectionSet& s, double tolerance, std::vector<std::string>* war
         // An existing vertex on the line stays where it is (it is an input point the surface
         // must interpolate); otherwise the two crossings meet half way.
         p[f] = x.at_vertex ? x.free : y.at_vertex ? y.free : 0.5 * (x.free + y.free);
-        edits[a].push_back(Edit{x.segment, x.t, p});
-        edits[bc].push_back(Edit{y.segment, y.t, p});
+        edits[uz(x.curve)].push_back(Edit{x.segment, x.t, p});
+        edits[uz(y.curve)].push_back(Edit{y.segment, y.t, p});
         ++shared;
       }
       if (warnings) {
         for (const auto* list : {&ca, &cb})
           for (const auto& x : *list)
             if (!x.used) {
-              warnings->push_back("curve " + std::to_string(x.curve) + " meets the line of planes " +
-                                  std::to_string(s.curves[a].plane) + " and " + std::to_string(s.curves[bc].plane) +
-                                  " where curve " + std::to_string(x.curve == static_cast<int>(a) ? bc : a) +
-                                  " does not (rule 4); not sewn");
-              break;
+              Vec3 at;
+              at[k] = pa.offset;
+              at[j] = pb.offset;
+              at[f] = x.free;
+              warnings->push_back("a curve crosses the line at " + fmt(at) + " where planes (" +
+                                  std::to_string(pa.normal.x()) + ", " + std::to_string(pa.normal.y()) + ", " +
+                                  std::to_string(pa.normal.z()) + ") . p = " + std::to_string(pa.offset) + " and (" +
+                                  std::to_string(pb.normal.x()) + ", " + std::to_string(pb.normal.y()) + ", " +
+                                  std::to_string(pb.normal.z()) + ") . p = " + std::to_string(pb.offset) +
+                                  " meet, and no curve of the other plane crosses it nearby (rule 4); not sewn");
             }
       }
     }

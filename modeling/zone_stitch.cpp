@@ -206,32 +206,24 @@ int split_t_junctions(TriMesh& m, double tol) {
 
 }  // namespace
 
-TriMesh weld_vertices(const TriMesh& mesh, double tol) {
-  const double h = std::max(tol, 1e-300);
-  std::unordered_map<CellKey, std::vector<int>, CellHash> grid;
-  std::vector<int> map(mesh.vertices.size(), -1);
+namespace {
+
+// Merges the vertices of `m` given by `parent` (union-find forest, roots are smallest indices).
+TriMesh apply_merge(const TriMesh& mesh, std::vector<int>& parent) {
+  const std::size_t n = mesh.vertices.size();
+  auto find = [&](int v) {
+    while (parent[uz(v)] != v) v = parent[uz(v)] = parent[uz(parent[uz(v)])];
+    return v;
+  };
+  std::vector<int> map(n, -1);
   TriMesh out;
-  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
-    const Vec3& p = mesh.vertices[v];
-    const CellKey c = cell_of(p, h);
-    int found = -1;
-    for (std::int64_t dx = -1; dx <= 1 && found < 0; ++dx)
-      for (std::int64_t dy = -1; dy <= 1 && found < 0; ++dy)
-        for (std::int64_t dz = -1; dz <= 1 && found < 0; ++dz) {
-          const auto it = grid.find({c.x + dx, c.y + dy, c.z + dz});
-          if (it == grid.end()) continue;
-          for (int r : it->second)
-            if ((out.vertices[uz(r)] - p).norm() <= tol) {
-              found = r;
-              break;
-            }
-        }
-    if (found < 0) {
-      found = static_cast<int>(out.vertices.size());
-      out.vertices.push_back(p);
-      grid[c].push_back(found);
+  for (std::size_t v = 0; v < n; ++v) {
+    const int r = find(static_cast<int>(v));
+    if (map[uz(r)] < 0) {
+      map[uz(r)] = static_cast<int>(out.vertices.size());
+      out.vertices.push_back(mesh.vertices[uz(r)]);
     }
-    map[v] = found;
+    map[v] = map[uz(r)];
   }
   for (const auto& f : mesh.faces) {
     const Face g{map[uz(f[0])], map[uz(f[1])], map[uz(f[2])]};
@@ -239,6 +231,66 @@ TriMesh weld_vertices(const TriMesh& mesh, double tol) {
     out.faces.push_back(g);
   }
   return out;
+}
+
+}  // namespace
+
+TriMesh weld_vertices(const TriMesh& mesh, double tol) {
+  // 1. Identical positions (most of them: shared points are rounded from the same exact value).
+  const std::size_t n = mesh.vertices.size();
+  std::vector<int> order(n), parent(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = parent[i] = static_cast<int>(i);
+  auto key = [&](int a) {
+    const Vec3& p = mesh.vertices[uz(a)];
+    return std::make_tuple(p.x(), p.y(), p.z(), a);
+  };
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+  for (std::size_t a = 1; a < n; ++a)
+    if (mesh.vertices[uz(order[a])] == mesh.vertices[uz(order[a - 1])])
+      parent[uz(order[a])] = parent[uz(order[a - 1])];  // run root: the smallest index
+  TriMesh exact = apply_merge(mesh, parent);
+
+  // 2. Near positions, only among vertices of boundary edges (where sides failed to meet):
+  //    sort-and-sweep along x with union-find, smallest index wins.
+  std::vector<std::uint64_t> edges;
+  edges.reserve(exact.faces.size() * 3);
+  for (const auto& f : exact.faces)
+    for (int i = 0; i < 3; ++i) edges.push_back(edge_key(f[uz(i)], f[uz((i + 1) % 3)]));
+  std::sort(edges.begin(), edges.end());
+  std::vector<int> cand;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) {
+      cand.push_back(static_cast<int>(edges[i] >> 32));
+      cand.push_back(static_cast<int>(edges[i] & 0xffffffffULL));
+    }
+    i = j;
+  }
+  std::sort(cand.begin(), cand.end());
+  cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+  if (cand.empty()) return exact;
+  std::vector<int> par2(exact.vertices.size());
+  for (std::size_t i = 0; i < par2.size(); ++i) par2[i] = static_cast<int>(i);
+  auto find = [&](int v) {
+    while (par2[uz(v)] != v) v = par2[uz(v)] = par2[uz(par2[uz(v)])];
+    return v;
+  };
+  std::sort(cand.begin(), cand.end(), [&](int a, int b) {
+    return exact.vertices[uz(a)].x() < exact.vertices[uz(b)].x() ||
+           (exact.vertices[uz(a)].x() == exact.vertices[uz(b)].x() && a < b);
+  });
+  for (std::size_t a = 0; a < cand.size(); ++a) {
+    const Vec3& p = exact.vertices[uz(cand[a])];
+    for (std::size_t b = a + 1; b < cand.size(); ++b) {
+      const Vec3& q = exact.vertices[uz(cand[b])];
+      if (q.x() - p.x() > tol) break;
+      if ((q - p).norm() > tol) continue;
+      const int ra = find(cand[a]), rb = find(cand[b]);
+      if (ra != rb) par2[uz(std::max(ra, rb))] = std::min(ra, rb);
+    }
+  }
+  return apply_merge(exact, par2);
 }
 
 void canonicalize(TriMesh& m) {

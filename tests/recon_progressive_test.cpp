@@ -24,7 +24,7 @@ ReconstructOptions no_improve() {
 
 SectionSet five_sections() {
   return testing::ellipsoid_slices(Vec3::Zero(), Vec3(1.0, 0.8, 0.6),
-                                   {{0, -0.3}, {0, 0.4}, {1, 0.1}, {2, -0.2}, {2, 0.25}}, 32);
+                                   {{0, -0.3}, {0, 0.4}, {1, 0.1}, {2, -0.2}, {2, 0.25}}, 20);
 }
 
 // The sections permuted: curves reordered, each curve on its own plane entry.
