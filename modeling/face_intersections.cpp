@@ -102,6 +102,20 @@ CGAL::Bbox_3 face_box(const std::vector<Vec3>& pts, const Face& f) {
                       std::max({a.y(), b.y(), c.y()}), std::max({a.z(), b.z(), c.z()}));
 }
 
+// Angle between two vectors from y = |u x v| >= 0 and x = u . v, within 2e-5 rad of the exact
+// value (a minimax polynomial for atan on [0, 1]); about 4x cheaper than std::atan2, which
+// dominated the fan test. Only used to count turns, where errors below 1e-3 rad are harmless.
+double fast_angle(double y, double x) {
+  const double ax = std::abs(x);
+  if (!(ax > 0.0 || y > 0.0)) return 0.0;
+  const bool swap = y > ax;
+  const double z = swap ? ax / y : y / ax;
+  const double z2 = z * z;
+  double a = z * (0.9998660 + z2 * (-0.3302995 + z2 * (0.1801410 + z2 * (-0.0851330 + z2 * 0.0208351))));
+  if (swap) a = 0.5 * std::numbers::pi - a;
+  return x < 0.0 ? std::numbers::pi - a : a;
+}
+
 // Vertices whose fan is a graph over the plane normal to the fan's area-weighted normal N: every
 // incident face is turned towards N by a clear margin (n_f . N > 0.2 |n_f| |N|), so every face
 // projects with positive orientation, and the projected angles at the vertex sum to one turn.
@@ -135,7 +149,7 @@ std::vector<std::uint8_t> embedded_fans(const std::vector<Vec3>& pts, const std:
       Vec3 e2 = pts[idx(fc[idx((k + 2) % 3)])] - pts[v];
       e1 -= e1.dot(u) * u;
       e2 -= e2.dot(u) * u;
-      turn[v] += std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+      turn[v] += fast_angle(e1.cross(e2).norm(), e1.dot(e2));
     }
   }
   std::vector<std::uint8_t> good(nv, 0);

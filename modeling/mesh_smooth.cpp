@@ -35,18 +35,23 @@ std::vector<Vec3> Smoother::next_positions(const HalfedgeMesh& m) {
   delta_.assign(idx(nv), Vec3::Zero());
   normal_.assign(idx(nv), Vec3::Zero());
   kappa_.assign(idx(nv), 0.0);
+  edge2_.assign(idx(nv), 0.0);
   for (int v = 0; v < nv; ++v) {
     const int b = ring_start_[idx(v)], e = ring_start_[idx(v + 1)];
     if (b == e) continue;
     Vec3 sum = Vec3::Zero(), n = Vec3::Zero();
+    double len2 = 0;
     for (int i = b; i < e; ++i) {
-      sum += m.position(ring_[idx(i)]);
+      const Vec3& q = m.position(ring_[idx(i)]);
+      sum += q;
+      len2 += (q - m.position(v)).squaredNorm();
       n += face_normal_[idx(fan_[idx(i)])];  // area-weighted: twice the area times the unit normal
     }
     delta_[idx(v)] = sum / (e - b) - m.position(v);
     const double len = n.norm();
     normal_[idx(v)] = len > 0.0 ? Vec3(n / len) : Vec3::Zero();
     kappa_[idx(v)] = delta_[idx(v)].dot(normal_[idx(v)]);
+    edge2_[idx(v)] = len2 / (e - b);
   }
   std::vector<Vec3> out = m.positions;
   for (int v = 0; v < nv; ++v) {
@@ -55,9 +60,14 @@ std::vector<Vec3> Smoother::next_positions(const HalfedgeMesh& m) {
     const Vec3& nrm = normal_[idx(v)];
     double normal_move = kappa_[idx(v)];
     if (options_.flow == NormalFlow::kCurvatureEvening) {
+      // kappa ~ -H l^2 / 2 for mean edge length l: compare curvatures, not kappas, so that a
+      // sphere sampled unevenly is still a fixed point.
       double mean = 0;
-      for (int i = b; i < e; ++i) mean += kappa_[idx(ring_[idx(i)])];
-      normal_move -= mean / (e - b);
+      for (int i = b; i < e; ++i) {
+        const int j = ring_[idx(i)];
+        if (edge2_[idx(j)] > 0.0) mean += kappa_[idx(j)] / edge2_[idx(j)];
+      }
+      normal_move -= edge2_[idx(v)] * mean / (e - b);
     }
     const Vec3 tangential = delta_[idx(v)] - kappa_[idx(v)] * nrm;
     out[idx(v)] = m.position(v) + options_.normal_step * normal_move * nrm + options_.tangential_step * tangential;
