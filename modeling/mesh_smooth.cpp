@@ -7,6 +7,23 @@ namespace {
 
 std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 
+// Twice the area is below 1e-10 times the squared longest edge (angles of about 1e-10 rad).
+bool degenerate(const Vec3& n, const Face& f, const std::vector<Vec3>& p) {
+  double longest = 0;
+  for (int k = 0; k < 3; ++k)
+    longest = std::max(longest, (p[idx(f[idx(k)])] - p[idx(f[idx((k + 1) % 3)])]).squaredNorm());
+  return !(n.norm() > 1e-10 * longest);
+}
+
+// A face whose normal went from n0 to n turned over, or collapsed. A face that was already
+// degenerate may stay so (the step may be what repairs it).
+bool face_folded(const Vec3& n0, const Vec3& n, const std::vector<Vec3>& p0, const Face& f,
+                 const std::vector<Vec3>& p) {
+  const bool was_degenerate = degenerate(n0, f, p0);
+  if (was_degenerate) return false;
+  return degenerate(n, f, p) || !(n.dot(n0) > 0.0);
+}
+
 }  // namespace
 
 Smoother::Smoother(const HalfedgeMesh& m, const std::vector<std::uint8_t>& fixed, const SmoothOptions& o)
@@ -78,7 +95,11 @@ std::vector<Vec3> Smoother::next_positions(const HalfedgeMesh& m) {
 int Smoother::step(HalfedgeMesh& m) {
   std::vector<Vec3> before = m.positions;
   m.positions = next_positions(m);
-  return revert_folded_faces(m, before);
+  // face_normal_ holds the normals before the step: a quick scan finds whether any face folded.
+  for (int f = 0; f < m.num_faces(); ++f)
+    if (face_folded(face_normal_[idx(f)], m.face_normal(f), before, m.faces[idx(f)], m.positions))
+      return revert_folded_faces(m, before);
+  return 0;
 }
 
 std::vector<Vec3> smooth_step(const HalfedgeMesh& m, const std::vector<std::uint8_t>& fixed,
@@ -98,13 +119,7 @@ int revert_folded_faces(HalfedgeMesh& m, const std::vector<Vec3>& before) {
       const Vec3 n = m.face_normal(f);
       const Vec3& a = before[idx(fc[0])];
       const Vec3 n0 = (before[idx(fc[1])] - a).cross(before[idx(fc[2])] - a);
-      // Turned over, or shrunk to (almost) nothing compared with its longest edge.
-      double longest = 0;
-      for (int k = 0; k < 3; ++k)
-        longest = std::max(longest, (m.position(fc[idx(k)]) - m.position(fc[idx((k + 1) % 3)])).squaredNorm());
-      const bool degenerate = !(n.norm() > 1e-10 * longest);
-      const bool turned = n0.squaredNorm() > 0.0 && !(n.dot(n0) > 0.0);
-      if (!degenerate && !turned) continue;
+      if (!face_folded(n0, n, before, fc, m.positions)) continue;
       for (int v : fc)
         if (m.positions[idx(v)] != before[idx(v)]) {
           m.positions[idx(v)] = before[idx(v)];

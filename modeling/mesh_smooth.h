@@ -40,7 +40,9 @@ std::vector<Vec3> smooth_step(const HalfedgeMesh& mesh, const std::vector<std::u
                               const SmoothOptions& options = {});
 
 // Puts vertices back to their positions in `before` (#V) until no face has turned over (its
-// normal opposes its normal in `before`) or collapsed; returns the number of reverted moves.
+// normal opposes its normal in `before`) or collapsed (twice its area below 1e-10 times its
+// squared longest edge); faces already degenerate in `before` may move freely, so smoothing can
+// repair them. Returns the number of reverted moves.
 int revert_folded_faces(HalfedgeMesh& mesh, const std::vector<Vec3>& before);
 
 // Repeated steps on a mesh whose connectivity stays fixed: the one-rings are gathered once.

@@ -205,6 +205,31 @@ TEST(ImproveStaircase, CoarseAndDenseInputsStayValid) {
   }
 }
 
+// A staircase squashed to 5% of its width: unchecked, smoothing pushes the two flat sides
+// through each other; checked, the offending moves and flips are stepped back.
+TEST(ImproveStaircase, ChecksStepBackWhatWouldIntersectOnAThinShape) {
+  JaggyInput in = staircase(6, 48);
+  for (auto& v : in.mesh.vertices) v.y() *= 0.05;
+  ASSERT_TRUE(check_guarantees(in.mesh).valid());
+  ImproveOptions unchecked;
+  unchecked.check_self_intersections = false;
+  const TriMesh bad = improved(in, nullptr, unchecked);
+  EXPECT_TRUE(does_self_intersect(bad));  // the scenario really needs the checks
+
+  ImproveReport rep;
+  const TriMesh out = improved(in, &rep);
+  const MeshGuarantees g = check_guarantees(out);
+  EXPECT_TRUE(g.valid()) << g.problem();
+  EXPECT_EQ(g.topology.genus, 0);
+  EXPECT_GT(rep.smoothing_rollbacks, 0);
+  for (std::size_t v = 0; v < in.mesh.vertices.size(); ++v) {
+    if (in.fixed_vertex[v]) {
+      ASSERT_EQ(out.vertices[v], in.mesh.vertices[v]);
+    }
+  }
+  keep_on_failure(out, "improve_thin_staircase");
+}
+
 TEST(ImproveStaircase, ZeroIterationsReturnsTheInput) {
   const JaggyInput in = staircase(4, 16);
   ImproveOptions opt;
