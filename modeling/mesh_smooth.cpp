@@ -12,16 +12,15 @@ bool degenerate(const Vec3& n, const Face& f, const std::vector<Vec3>& p) {
   double longest = 0;
   for (int k = 0; k < 3; ++k)
     longest = std::max(longest, (p[idx(f[idx(k)])] - p[idx(f[idx((k + 1) % 3)])]).squaredNorm());
-  return !(n.norm() > 1e-10 * longest);
+  return !(n.squaredNorm() > 1e-20 * longest * longest);
 }
 
 // A face whose normal went from n0 to n turned over, or collapsed. A face that was already
 // degenerate may stay so (the step may be what repairs it).
 bool face_folded(const Vec3& n0, const Vec3& n, const std::vector<Vec3>& p0, const Face& f,
                  const std::vector<Vec3>& p) {
-  const bool was_degenerate = degenerate(n0, f, p0);
-  if (was_degenerate) return false;
-  return degenerate(n, f, p) || !(n.dot(n0) > 0.0);
+  if (n.dot(n0) > 0.0 && !degenerate(n, f, p)) return false;  // the common case first
+  return !degenerate(n0, f, p0);
 }
 
 }  // namespace
