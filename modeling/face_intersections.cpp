@@ -118,20 +118,30 @@ double fast_angle(double y, double x) {
 
 // Vertices whose fan is a graph over the plane normal to the fan's area-weighted normal N: every
 // incident face is turned towards N by a clear margin (n_f . N > 0.2 |n_f| |N|), so every face
-// projects with positive orientation, and the projected angles at the vertex sum to one turn.
-// Such a fan is embedded: two of its faces meet only in their shared vertex or edge, so their
-// exact test can be skipped. The margin keeps the double computation far from any sign
-// decision; a vertex that fails simply has its pairs tested exactly.
+// projects with positive orientation, and the projected angles at the vertex sum to one turn
+// (not two or more). The projected faces then tile the full angle around the vertex once, and
+// projection is one-to-one on each face, so two faces of the fan meet only in their shared
+// vertex or edge: their exact test can be skipped. The margins keep the double computation far
+// from any sign decision; a vertex that fails simply has its pairs tested exactly.
 std::vector<std::uint8_t> embedded_fans(const std::vector<Vec3>& pts, const std::vector<Face>& faces) {
   const std::size_t nv = pts.size();
   std::vector<Vec3> normal(nv, Vec3::Zero());
   std::vector<Vec3> face_n(faces.size());
+  std::vector<std::uint8_t> bad(nv, 0);
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const Face& fc = faces[f];
-    face_n[f] = (pts[idx(fc[1])] - pts[idx(fc[0])]).cross(pts[idx(fc[2])] - pts[idx(fc[0])]);
+    const Vec3 e1 = pts[idx(fc[1])] - pts[idx(fc[0])], e2 = pts[idx(fc[2])] - pts[idx(fc[0])];
+    face_n[f] = e1.cross(e2);
     for (int v : fc) normal[idx(v)] += face_n[f];
+    // The computed normal is trusted only when the face is far from degenerate (sine of its
+    // angle at corner 0 above 1e-4) and its edges are long compared with the rounding of its
+    // coordinates; otherwise its vertices' pairs are tested exactly.
+    const double coord = std::max({pts[idx(fc[0])].cwiseAbs().maxCoeff(), pts[idx(fc[1])].cwiseAbs().maxCoeff(),
+                                   pts[idx(fc[2])].cwiseAbs().maxCoeff()});
+    const double l1 = e1.norm(), l2 = e2.norm(), l3 = (e2 - e1).norm();
+    if (!(face_n[f].norm() > 1e-4 * l1 * l2) || !(std::min({l1, l2, l3}) > 1e-9 * coord))
+      for (int v : fc) bad[idx(v)] = 1;
   }
-  std::vector<std::uint8_t> bad(nv, 0);
   std::vector<double> turn(nv, 0.0);
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const Face& fc = faces[f];
