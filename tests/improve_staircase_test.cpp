@@ -259,6 +259,18 @@ TEST(ImproveStaircase, ChecksStepBackWhatWouldIntersectOnAThinShape) {
   keep_on_failure(out, "improve_thin_staircase");
 }
 
+TEST(ImproveStaircase, IsolatedVerticesAreKeptAndLeftAlone) {
+  JaggyInput in = staircase(4, 16);
+  in.mesh.vertices.push_back(Vec3(7, 8, 9));
+  in.fixed_vertex.push_back(false);
+  const TriMesh out = improved(in);
+  ASSERT_GT(out.vertices.size(), in.mesh.vertices.size());
+  EXPECT_EQ(out.vertices[in.mesh.vertices.size() - 1], Vec3(7, 8, 9));
+  const auto t = mesh_topology(out);
+  EXPECT_EQ(t.isolated_vertices, 1);
+  EXPECT_TRUE(t.closed && t.manifold());
+}
+
 TEST(ImproveStaircase, ZeroIterationsReturnsTheInput) {
   const JaggyInput in = staircase(4, 16);
   ImproveOptions opt;
