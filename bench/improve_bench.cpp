@@ -1,5 +1,5 @@
 // Mesh improvement (thesis 4.5.1) timing and quality on jaggy staircase inputs.
-// Usage: improve_bench [repetitions=7] [smoothing_steps] [normal_step] [evening 0|1] [which 0|1|2]
+// Usage: improve_bench [repetitions=7] [smoothing_steps] [normal_step] [evening 0|1] [which 0|1|2|3]
 //                      [ramp_rounds] [iterations]
 // Prints, per input: faces in/out, median / min wall time over the repetitions, stage times,
 // triangle quality and smoothness before and after, distance to the analytic surface of
@@ -12,6 +12,10 @@
 #include <ctime>
 #include <string>
 #include <vector>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Surface_mesh.h>
 
 #include "modeling/mesh_improve.h"
 #include "modeling/mesh_queries.h"
@@ -80,6 +84,63 @@ void run(const char* name, const ps::testing::JaggyInput& in, int reps, const Im
               rms0, rms1, max0, max1, v0, v1, 100.0 * (v1 - v0) / v0, g.valid() ? "ok" : g.problem().c_str());
 }
 
+// Baseline: CGAL's PMP::isotropic_remeshing with the curve edges constrained and protected, the
+// target length the mean curve edge length, 10 iterations (what the thesis's refinement could be
+// replaced by). It projects onto the input surface, so it keeps the union's creases.
+void run_cgal_baseline(const char* name, const ps::testing::JaggyInput& in, int reps) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using SM = CGAL::Surface_mesh<K::Point_3>;
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  double target = 0;
+  for (const auto& e : in.fixed_edges)
+    target += (in.mesh.vertices[static_cast<std::size_t>(e[0])] - in.mesh.vertices[static_cast<std::size_t>(e[1])]).norm();
+  target /= static_cast<double>(in.fixed_edges.size());
+  std::vector<double> cpu_ms;
+  TriMesh out;
+  for (int r = 0; r < reps; ++r) {
+    SM sm;
+    std::vector<SM::Vertex_index> vid;
+    for (const auto& v : in.mesh.vertices) vid.push_back(sm.add_vertex(K::Point_3(v.x(), v.y(), v.z())));
+    for (const auto& f : in.mesh.faces)
+      sm.add_face(vid[static_cast<std::size_t>(f[0])], vid[static_cast<std::size_t>(f[1])], vid[static_cast<std::size_t>(f[2])]);
+    auto ecm = sm.add_property_map<SM::Edge_index, bool>("e:constrained", false).first;
+    auto vcm = sm.add_property_map<SM::Vertex_index, bool>("v:constrained", false).first;
+    for (const auto& e : in.fixed_edges) {
+      const auto h = sm.halfedge(vid[static_cast<std::size_t>(e[0])], vid[static_cast<std::size_t>(e[1])]);
+      put(ecm, sm.edge(h), true);
+    }
+    for (std::size_t v = 0; v < vid.size(); ++v)
+      if (in.fixed_vertex[v]) put(vcm, vid[v], true);
+    const std::clock_t c0 = std::clock();
+    PMP::isotropic_remeshing(faces(sm), target, sm,
+                             CGAL::parameters::number_of_iterations(10)
+                                 .edge_is_constrained_map(ecm)
+                                 .vertex_is_constrained_map(vcm)
+                                 .protect_constraints(true));
+    cpu_ms.push_back(1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
+    sm.collect_garbage();
+    out = TriMesh{};
+    for (auto v : sm.vertices()) {
+      const auto& p = sm.point(v);
+      out.vertices.emplace_back(p.x(), p.y(), p.z());
+    }
+    for (auto f : sm.faces()) {
+      Face fc{};
+      int k = 0;
+      for (auto v : vertices_around_face(sm.halfedge(f), sm)) fc[static_cast<std::size_t>(k++)] = static_cast<int>(v.idx());
+      out.faces.push_back(fc);
+    }
+  }
+  std::sort(cpu_ms.begin(), cpu_ms.end());
+  const MeshQuality q = mesh_quality(out);
+  const auto [rms, mx] = profile_error(in, out);
+  const MeshGuarantees g = check_guarantees(out);
+  std::printf("%s, CGAL isotropic_remeshing baseline: faces %zu, CPU median %.1f ms, min angle %.2f, "
+              "mean min angle %.2f, max dihedral %.1f, rms dihedral %.2f, profile error rms %.4f max %.4f, %s\n",
+              name, out.faces.size(), cpu_ms[cpu_ms.size() / 2], q.min_angle_deg, q.mean_min_angle_deg,
+              q.max_dihedral_deg, q.rms_dihedral_deg, rms, mx, g.valid() ? "guarantees ok" : g.problem().c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -93,8 +154,9 @@ int main(int argc, char** argv) {
   std::printf("options: iterations %d, smoothing steps %d, normal step %.2f, %s flow, alpha ramp over %d rounds\n",
               opt.iterations, opt.smoothing_steps, opt.normal_step,
               opt.curvature_evening ? "curvature-evening" : "mean-curvature", opt.ramp_rounds);
-  const int which = argc > 5 ? std::atoi(argv[5]) : 0;  // 0 both, 1 small only, 2 large only
+  const int which = argc > 5 ? std::atoi(argv[5]) : 0;  // 0 both, 1 small, 2 large, 3 small + CGAL
   if (which != 2) run("staircase 10 slabs x 48 (~3k triangles)", ps::testing::staircase(10, 48), reps, opt);
+  if (which == 3) run_cgal_baseline("staircase 10 slabs x 48", ps::testing::staircase(10, 48), reps);
   if (which != 1)
     run("staircase 28 slabs x 120 (~20k triangles)", ps::testing::staircase(28, 120), std::max(1, reps / 2), opt);
   return 0;

@@ -46,11 +46,12 @@ struct ImproveOptions {
 };
 
 struct ImproveReport {
-  int splits = 0, flips = 0, smoothing_rollbacks = 0;
-  double ms = 0;
-  int refinement_rollbacks = 0;  // refinement rounds redone without some flips
+  int splits = 0, flips = 0;
+  int smoothing_rollbacks = 0;   // vertex moves undone (a face turned over, or an intersection)
+  double ms = 0;                 // wall time of the whole call
+  int refinement_rollbacks = 0;  // rounds redone with flips locked after an intersection
   int faces_in = 0, faces_out = 0;
-  double refine_ms = 0, smooth_ms = 0, check_ms = 0;
+  double refine_ms = 0, smooth_ms = 0, check_ms = 0;  // wall time per stage, summed over rounds
 };
 
 // fixed_vertex: #V flags (true: on an input curve). fixed_edges: vertex pairs, either order.

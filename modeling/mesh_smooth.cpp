@@ -7,6 +7,22 @@ namespace {
 
 std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 
+// Twice the area is below 1e-10 times the squared longest edge (angles of about 1e-10 rad).
+bool degenerate(const Vec3& n, const Face& f, const std::vector<Vec3>& p) {
+  double longest = 0;
+  for (int k = 0; k < 3; ++k)
+    longest = std::max(longest, (p[idx(f[idx(k)])] - p[idx(f[idx((k + 1) % 3)])]).squaredNorm());
+  return !(n.squaredNorm() > 1e-20 * longest * longest);
+}
+
+// A face whose normal went from n0 to n turned over, or collapsed. A face that was already
+// degenerate may stay so (the step may be what repairs it).
+bool face_folded(const Vec3& n0, const Vec3& n, const std::vector<Vec3>& p0, const Face& f,
+                 const std::vector<Vec3>& p) {
+  if (n.dot(n0) > 0.0 && !degenerate(n, f, p)) return false;  // the common case first
+  return !degenerate(n0, f, p0);
+}
+
 }  // namespace
 
 Smoother::Smoother(const HalfedgeMesh& m, const std::vector<std::uint8_t>& fixed, const SmoothOptions& o)
@@ -35,18 +51,23 @@ std::vector<Vec3> Smoother::next_positions(const HalfedgeMesh& m) {
   delta_.assign(idx(nv), Vec3::Zero());
   normal_.assign(idx(nv), Vec3::Zero());
   kappa_.assign(idx(nv), 0.0);
+  edge2_.assign(idx(nv), 0.0);
   for (int v = 0; v < nv; ++v) {
     const int b = ring_start_[idx(v)], e = ring_start_[idx(v + 1)];
     if (b == e) continue;
     Vec3 sum = Vec3::Zero(), n = Vec3::Zero();
+    double len2 = 0;
     for (int i = b; i < e; ++i) {
-      sum += m.position(ring_[idx(i)]);
+      const Vec3& q = m.position(ring_[idx(i)]);
+      sum += q;
+      len2 += (q - m.position(v)).squaredNorm();
       n += face_normal_[idx(fan_[idx(i)])];  // area-weighted: twice the area times the unit normal
     }
     delta_[idx(v)] = sum / (e - b) - m.position(v);
     const double len = n.norm();
     normal_[idx(v)] = len > 0.0 ? Vec3(n / len) : Vec3::Zero();
     kappa_[idx(v)] = delta_[idx(v)].dot(normal_[idx(v)]);
+    edge2_[idx(v)] = len2 / (e - b);
   }
   std::vector<Vec3> out = m.positions;
   for (int v = 0; v < nv; ++v) {
@@ -55,9 +76,14 @@ std::vector<Vec3> Smoother::next_positions(const HalfedgeMesh& m) {
     const Vec3& nrm = normal_[idx(v)];
     double normal_move = kappa_[idx(v)];
     if (options_.flow == NormalFlow::kCurvatureEvening) {
+      // kappa ~ -H l^2 / 2 for mean edge length l: compare curvatures, not kappas, so that a
+      // sphere sampled unevenly is still a fixed point.
       double mean = 0;
-      for (int i = b; i < e; ++i) mean += kappa_[idx(ring_[idx(i)])];
-      normal_move -= mean / (e - b);
+      for (int i = b; i < e; ++i) {
+        const int j = ring_[idx(i)];
+        if (edge2_[idx(j)] > 0.0) mean += kappa_[idx(j)] / edge2_[idx(j)];
+      }
+      normal_move -= edge2_[idx(v)] * mean / (e - b);
     }
     const Vec3 tangential = delta_[idx(v)] - kappa_[idx(v)] * nrm;
     out[idx(v)] = m.position(v) + options_.normal_step * normal_move * nrm + options_.tangential_step * tangential;
@@ -68,7 +94,11 @@ std::vector<Vec3> Smoother::next_positions(const HalfedgeMesh& m) {
 int Smoother::step(HalfedgeMesh& m) {
   std::vector<Vec3> before = m.positions;
   m.positions = next_positions(m);
-  return revert_folded_faces(m, before);
+  // face_normal_ holds the normals before the step: a quick scan finds whether any face folded.
+  for (int f = 0; f < m.num_faces(); ++f)
+    if (face_folded(face_normal_[idx(f)], m.face_normal(f), before, m.faces[idx(f)], m.positions))
+      return revert_folded_faces(m, before);
+  return 0;
 }
 
 std::vector<Vec3> smooth_step(const HalfedgeMesh& m, const std::vector<std::uint8_t>& fixed,
@@ -88,13 +118,7 @@ int revert_folded_faces(HalfedgeMesh& m, const std::vector<Vec3>& before) {
       const Vec3 n = m.face_normal(f);
       const Vec3& a = before[idx(fc[0])];
       const Vec3 n0 = (before[idx(fc[1])] - a).cross(before[idx(fc[2])] - a);
-      // Turned over, or shrunk to (almost) nothing compared with its longest edge.
-      double longest = 0;
-      for (int k = 0; k < 3; ++k)
-        longest = std::max(longest, (m.position(fc[idx(k)]) - m.position(fc[idx((k + 1) % 3)])).squaredNorm());
-      const bool degenerate = !(n.norm() > 1e-10 * longest);
-      const bool turned = n0.squaredNorm() > 0.0 && !(n.dot(n0) > 0.0);
-      if (!degenerate && !turned) continue;
+      if (!face_folded(n0, n, before, fc, m.positions)) continue;
       for (int v : fc)
         if (m.positions[idx(v)] != before[idx(v)]) {
           m.positions[idx(v)] = before[idx(v)];

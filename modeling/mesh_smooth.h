@@ -7,7 +7,10 @@
 //                                kappa ~ H h^2 for local edge length h, in length units)
 //   T_i     = delta_i - kappa_i N_i                 (tangential part of the umbrella)
 //   tau N_i = lambda kappa_i N_i                          NormalFlow::kMeanCurvature
-//           = lambda (kappa_i - mean_j kappa_j) N_i       NormalFlow::kCurvatureEvening
+//           = lambda l_i^2 (kappa_i / l_i^2 - mean_j kappa_j / l_j^2) N_i
+//                                                         NormalFlow::kCurvatureEvening
+//   with l_i^2 the mean squared length of the edges at i (kappa_i / l_i^2 ~ -H_i / 2, so the
+//   evening compares curvatures and an unevenly sampled sphere is still a fixed point)
 //   p'_i    = p_i + tau N_i + eps T_i
 //
 // Both normal flows are explicit and stable for the default steps: the umbrella operator's
@@ -37,7 +40,9 @@ std::vector<Vec3> smooth_step(const HalfedgeMesh& mesh, const std::vector<std::u
                               const SmoothOptions& options = {});
 
 // Puts vertices back to their positions in `before` (#V) until no face has turned over (its
-// normal opposes its normal in `before`) or collapsed; returns the number of reverted moves.
+// normal opposes its normal in `before`) or collapsed (twice its area below 1e-10 times its
+// squared longest edge); faces already degenerate in `before` may move freely, so smoothing can
+// repair them. Returns the number of reverted moves.
 int revert_folded_faces(HalfedgeMesh& mesh, const std::vector<Vec3>& before);
 
 // Repeated steps on a mesh whose connectivity stays fixed: the one-rings are gathered once.
@@ -56,7 +61,7 @@ class Smoother {
   std::vector<int> ring_start_, ring_;  // CSR: neighbours of v are ring_[ring_start_[v] ..]
   std::vector<int> fan_start_, fan_;    // CSR: faces around v
   std::vector<Vec3> face_normal_, delta_, normal_;
-  std::vector<double> kappa_;
+  std::vector<double> kappa_, edge2_;
 };
 
 }  // namespace ps

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <cstdlib>
+#include <random>
 
 #include "modeling/halfedge_mesh.h"
 #include "modeling/mesh_improve.h"
@@ -124,7 +126,7 @@ TEST_F(Staircase, TrianglesGetBetter) {
 TEST_F(Staircase, SurfaceGetsSmoothAndApproachesTheAnalyticShape) {
   const MeshQuality q0 = mesh_quality(input_->mesh), q1 = mesh_quality(*output_);
   EXPECT_NEAR(q0.max_dihedral_deg, 90.0, 1e-6);  // the union's creases
-  EXPECT_LT(q1.max_dihedral_deg, 30.0);
+  EXPECT_LT(q1.max_dihedral_deg, 20.0);
   EXPECT_LT(q1.rms_dihedral_deg, 0.25 * q0.rms_dihedral_deg);
   const auto [rms0, max0] = profile_error(*input_, input_->mesh);
   const auto [rms1, max1] = profile_error(*input_, *output_);
@@ -154,7 +156,7 @@ TEST_F(Staircase, SecondRunChangesLittle) {
   EXPECT_LT(static_cast<double>(rep.faces_out), 1.1 * static_cast<double>(rep.faces_in));
   const double first_change = hausdorff_distance(input_->mesh, *output_, 20000);
   const double second_change = hausdorff_distance(*output_, *second, 20000);
-  EXPECT_LT(second_change, 0.25 * first_change) << first_change << " then " << second_change;
+  EXPECT_LT(second_change, 0.1 * first_change) << first_change << " then " << second_change;
   const auto [rms1, max1] = profile_error(*input_, *output_);
   const auto [rms2, max2] = profile_error(*input_, *second);
   EXPECT_LT(rms2, 1.2 * rms1);
@@ -182,7 +184,9 @@ TEST_F(Staircase, StableAtMicroAndMegaScale) {
     const MeshGuarantees g = check_guarantees(out);
     EXPECT_TRUE(g.valid()) << "scale " << s << ": " << g.problem();
     for (std::size_t v = 0; v < in.mesh.vertices.size(); ++v) {
-      if (in.fixed_vertex[v]) ASSERT_EQ(out.vertices[v], in.mesh.vertices[v]);
+      if (in.fixed_vertex[v]) {
+        ASSERT_EQ(out.vertices[v], in.mesh.vertices[v]);
+      }
     }
     const auto [rms, mx] = profile_error(*input_, out, s);
     EXPECT_NEAR(rms, rms_ref, 0.1 * rms_ref) << "scale " << s;
@@ -193,6 +197,33 @@ TEST_F(Staircase, StableAtMicroAndMegaScale) {
   }
 }
 
+// Reordered faces (shuffled, each cyclically shifted) and a rigid motion change the order of
+// splits and flips, not the outcome's quality or shape.
+TEST_F(Staircase, ReorderedAndMovedInputGivesAnEquivalentResult) {
+  JaggyInput in = *input_;
+  std::mt19937 rng(3);
+  std::shuffle(in.mesh.faces.begin(), in.mesh.faces.end(), rng);
+  for (std::size_t f = 0; f < in.mesh.faces.size(); ++f)
+    std::rotate(in.mesh.faces[f].begin(), in.mesh.faces[f].begin() + static_cast<long>(f % 3),
+                in.mesh.faces[f].end());
+  for (auto& e : in.fixed_edges) std::swap(e[0], e[1]);
+  const Eigen::Matrix3d rot = Eigen::AngleAxisd(1.1, Vec3(-1, 2, 0.5).normalized()).toRotationMatrix();
+  const Vec3 shift(4.0, -1.0, 2.5);
+  for (auto& v : in.mesh.vertices) v = rot * v + shift;
+  TriMesh out = improved(in);
+  EXPECT_TRUE(check_guarantees(out).valid());
+  for (auto& v : out.vertices) v = rot.transpose() * (v - shift);
+  const auto [rms_ref, max_ref] = profile_error(*input_, *output_);
+  const auto [rms, mx] = profile_error(*input_, out);
+  EXPECT_NEAR(rms, rms_ref, 0.15 * rms_ref);
+  const MeshQuality q = mesh_quality(out), q_ref = mesh_quality(*output_);
+  EXPECT_NEAR(q.mean_min_angle_deg, q_ref.mean_min_angle_deg, 2.0);
+  EXPECT_LT(q.max_dihedral_deg, 20.0);
+  EXPECT_NEAR(signed_volume(out), signed_volume(*output_), 0.01 * signed_volume(*output_));
+  EXPECT_NEAR(static_cast<double>(out.faces.size()), static_cast<double>(output_->faces.size()),
+              0.05 * static_cast<double>(output_->faces.size()));
+}
+
 TEST(ImproveStaircase, CoarseAndDenseInputsStayValid) {
   for (auto [slabs, n] : {std::pair{3, 12}, std::pair{6, 96}}) {
     const JaggyInput in = staircase(slabs, n);
@@ -201,6 +232,43 @@ TEST(ImproveStaircase, CoarseAndDenseInputsStayValid) {
     EXPECT_TRUE(g.valid()) << slabs << "x" << n << ": " << g.problem();
     EXPECT_EQ(g.topology.genus, 0);
   }
+}
+
+// A staircase squashed to 5% of its width: unchecked, smoothing pushes the two flat sides
+// through each other; checked, the offending moves and flips are stepped back.
+TEST(ImproveStaircase, ChecksStepBackWhatWouldIntersectOnAThinShape) {
+  JaggyInput in = staircase(6, 48);
+  for (auto& v : in.mesh.vertices) v.y() *= 0.05;
+  ASSERT_TRUE(check_guarantees(in.mesh).valid());
+  ImproveOptions unchecked;
+  unchecked.check_self_intersections = false;
+  const TriMesh bad = improved(in, nullptr, unchecked);
+  EXPECT_TRUE(does_self_intersect(bad));  // the scenario really needs the checks
+
+  ImproveReport rep;
+  const TriMesh out = improved(in, &rep);
+  const MeshGuarantees g = check_guarantees(out);
+  EXPECT_TRUE(g.valid()) << g.problem();
+  EXPECT_EQ(g.topology.genus, 0);
+  EXPECT_GT(rep.smoothing_rollbacks, 0);
+  for (std::size_t v = 0; v < in.mesh.vertices.size(); ++v) {
+    if (in.fixed_vertex[v]) {
+      ASSERT_EQ(out.vertices[v], in.mesh.vertices[v]);
+    }
+  }
+  keep_on_failure(out, "improve_thin_staircase");
+}
+
+TEST(ImproveStaircase, IsolatedVerticesAreKeptAndLeftAlone) {
+  JaggyInput in = staircase(4, 16);
+  in.mesh.vertices.push_back(Vec3(7, 8, 9));
+  in.fixed_vertex.push_back(false);
+  const TriMesh out = improved(in);
+  ASSERT_GT(out.vertices.size(), in.mesh.vertices.size());
+  EXPECT_EQ(out.vertices[in.mesh.vertices.size() - 1], Vec3(7, 8, 9));
+  const auto t = mesh_topology(out);
+  EXPECT_EQ(t.isolated_vertices, 1);
+  EXPECT_TRUE(t.closed && t.manifold());
 }
 
 TEST(ImproveStaircase, ZeroIterationsReturnsTheInput) {
