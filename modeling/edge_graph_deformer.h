@@ -56,6 +56,7 @@ struct DeformStats {
   double factor_ms = 0;
   double initial_solve_ms = 0;
   std::vector<double> iteration_ms;  // one entry per local/global iteration of the last call
+  double local_ms = 0, solve_ms = 0, energy_ms = 0;  // deform(): summed over the iterations
   std::vector<double> energies;      // energy after the initial solve and after each iteration
   int iterations = 0;
   bool converged = false;
