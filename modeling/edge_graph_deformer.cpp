@@ -118,7 +118,14 @@ struct EdgeGraphDeformer::Impl {
   std::vector<std::array<double, 2>> arc_c;
   std::vector<double> arc_w_plus;
   std::vector<Vec3> arc_rest;
-  std::vector<std::array<int, 3>> node_faces;  // local vertex ids
+  std::vector<int> node_faces;                 // into ref_faces
+  // Nodes and faces the local step reads (active nodes first, then their other neighbours), and
+  // their current positions / area-weighted normals, computed once per local step.
+  std::vector<std::array<int, 2>> ref_v;
+  std::vector<std::array<double, 2>> ref_c;
+  std::vector<int> arc_ref;                    // neighbour node of each arc, into ref_v
+  std::vector<std::array<int, 3>> ref_faces;   // local vertex ids
+  MatX3 ypos, fnorm;
   Eigen::VectorXd row_weight;
   SpRow jf, jk, m_rhs;  // m x n_free, m x n_known, n_free x m (= J_f^T W)
   SpRow afk;            // n_free x n_known
@@ -144,13 +151,26 @@ struct EdgeGraphDeformer::Impl {
     return c[0] * x.row(v[0]) + c[1] * x.row(v[1]);
   }
 
+  void compute_positions() {
+    ypos.resize(static_cast<Eigen::Index>(ref_v.size()), 3);
+    fnorm.resize(static_cast<Eigen::Index>(ref_faces.size()), 3);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ref_v.size(), 1024), [&](const auto& range) {
+      for (std::size_t r = range.begin(); r != range.end(); ++r) ypos.row(static_cast<Eigen::Index>(r)) = node_pos(ref_v[r], ref_c[r]);
+    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ref_faces.size(), 1024), [&](const auto& range) {
+      for (std::size_t f = range.begin(); f != range.end(); ++f) {
+        const auto& tri = ref_faces[f];
+        const Vec3 p0 = x.row(tri[0]).transpose();
+        fnorm.row(static_cast<Eigen::Index>(f)) =
+            (Vec3(x.row(tri[1]).transpose()) - p0).cross(Vec3(x.row(tri[2]).transpose()) - p0).transpose();
+      }
+    });
+  }
+
+  // Unit normal of the node's faces (after compute_positions).
   Vec3 normal_of(const Node& nd) const {
     Vec3 n = Vec3::Zero();
-    for (int f = nd.face_begin; f < nd.face_end; ++f) {
-      const auto& tri = node_faces[static_cast<std::size_t>(f)];
-      const Vec3 p0 = x.row(tri[0]).transpose();
-      n += (Vec3(x.row(tri[1]).transpose()) - p0).cross(Vec3(x.row(tri[2]).transpose()) - p0);
-    }
+    for (int f = nd.face_begin; f < nd.face_end; ++f) n += fnorm.row(node_faces[static_cast<std::size_t>(f)]).transpose();
     const double len = n.norm();
     return len > 0.0 ? Vec3(n / len) : Vec3::Zero();
   }
@@ -158,16 +178,17 @@ struct EdgeGraphDeformer::Impl {
   // === Local step: R_i (Eq. 5.5 with the reflection fix), s_i, and the targets t.
   void local_step() {
     const int n_arcs = static_cast<int>(arc_v.size());
+    compute_positions();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nodes.size(), 256), [&](const auto& range) {
       for (std::size_t a = range.begin(); a != range.end(); ++a) {
         const Node& nd = nodes[a];
-        const Eigen::RowVector3d yi = node_pos(nd.v, nd.c);
+        const Eigen::RowVector3d yi = ypos.row(static_cast<Eigen::Index>(a));
         Eigen::Matrix3d s_cov = Eigen::Matrix3d::Zero();
         constexpr int kCache = 16;
         Vec3 cache[kCache];
         for (int k = nd.arc_begin; k < nd.arc_end; ++k) {
           const auto ku = static_cast<std::size_t>(k);
-          const Vec3 e_new = (yi - node_pos(arc_v[ku], arc_c[ku])).transpose();
+          const Vec3 e_new = (yi - ypos.row(arc_ref[ku])).transpose();
           if (k - nd.arc_begin < kCache) cache[k - nd.arc_begin] = e_new;
           s_cov.noalias() += arc_w_plus[ku] * arc_rest[ku] * e_new.transpose();
         }
@@ -181,7 +202,7 @@ struct EdgeGraphDeformer::Impl {
           const auto ku = static_cast<std::size_t>(k);
           const Vec3 re = r * arc_rest[ku];
           const Vec3 e_new = k - nd.arc_begin < kCache ? cache[k - nd.arc_begin]
-                                                       : Vec3((yi - node_pos(arc_v[ku], arc_c[ku])).transpose());
+                                                       : Vec3((yi - ypos.row(arc_ref[ku])).transpose());
           num += arc_w_plus[ku] * e_new.dot(re);
           den += arc_w_plus[ku] * arc_rest[ku].squaredNorm();
           t.row(k) = re.transpose();
@@ -417,8 +438,22 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
   s.arc_w_plus.clear();
   s.arc_rest.clear();
   s.node_faces.clear();
+  s.ref_v.clear();
+  s.ref_c.clear();
+  s.arc_ref.clear();
+  s.ref_faces.clear();
+  std::vector<int> ref_of(n_nodes, -1), face_ref(s.mesh.faces.size(), -1);
+  auto ref = [&](std::size_t node) {
+    int& r = ref_of[node];
+    if (r < 0) {
+      r = static_cast<int>(s.ref_v.size());
+      s.ref_v.push_back({local(g.node_vertices[node][0]), local(g.node_vertices[node][1])});
+      s.ref_c.push_back(g.node_coef[node]);
+    }
+    return r;
+  };
+  for (int i : active) ref(static_cast<std::size_t>(i));  // active node a has ref index a
   std::vector<double> lambdas;
-  std::vector<std::array<int, 2>> arc_global;
   double area_sum = 0.0;
   for (int i : active) {
     const auto iu = static_cast<std::size_t>(i);
@@ -435,6 +470,7 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
                       g.node_coef[j][1] * s.mesh.vertices[static_cast<std::size_t>(g.node_vertices[j][1])];
       s.arc_v.push_back({local(g.node_vertices[j][0]), local(g.node_vertices[j][1])});
       s.arc_c.push_back(g.node_coef[j]);
+      s.arc_ref.push_back(ref(j));
       s.arc_w_plus.push_back(std::max(w, 0.0));
       s.arc_rest.push_back(yi - yj);
       nd.delta += w * (yi - yj);  // Eq. 5.1
@@ -442,8 +478,13 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
     nd.arc_end = static_cast<int>(s.arc_v.size());
     nd.face_begin = static_cast<int>(s.node_faces.size());
     for (int k = g.face_offsets[iu]; k < g.face_offsets[iu + 1]; ++k) {
-      const Face& f = s.mesh.faces[static_cast<std::size_t>(g.faces[static_cast<std::size_t>(k)])];
-      s.node_faces.push_back({local(f[0]), local(f[1]), local(f[2])});
+      const auto fi = static_cast<std::size_t>(g.faces[static_cast<std::size_t>(k)]);
+      if (face_ref[fi] < 0) {
+        const Face& f = s.mesh.faces[fi];
+        face_ref[fi] = static_cast<int>(s.ref_faces.size());
+        s.ref_faces.push_back({local(f[0]), local(f[1]), local(f[2])});
+      }
+      s.node_faces.push_back(face_ref[fi]);
     }
     nd.face_end = static_cast<int>(s.node_faces.size());
     double wl = 0.0;
@@ -545,6 +586,7 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
   s.x.resize(n_local, 3);
   for (int l = 0; l < n_local; ++l)
     s.x.row(l) = s.mesh.vertices[static_cast<std::size_t>(s.global_of[static_cast<std::size_t>(l)])].transpose();
+  s.compute_positions();
   for (auto& nd : s.nodes) nd.normal = s.normal_of(nd);
   s.t_rest.resize(m, 3);
   for (std::size_t a = 0; a < s.nodes.size(); ++a) {
