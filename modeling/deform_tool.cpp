@@ -1,6 +1,11 @@
 // Deformation tool (thesis 3.2.2, 3.3.3). The only CGAL use is the AABB tree of MeshRayCaster.
 #include "modeling/deform_tool.h"
 
+// GCC reports a false -Wmaybe-uninitialized inside CGAL's AABB ray traversal (boost::optional
+// returned as boost::none in AABB_traits.h) when building with sanitizers; the header is not ours.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
