@@ -144,7 +144,8 @@ Result<DeformSpec> parse_deform_spec(const std::string& text, const std::string&
   json doc;
   try {
     doc = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // Also number overflow (e.g. 1e999): JSON has no non-finite numbers.
     return Result<DeformSpec>::error(source + ": not valid JSON (" + e.what() + ")");
   }
   try {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <string>
-#include <unordered_map>
 
 #include "modeling/cotan_weights.h"
 
@@ -54,36 +53,45 @@ void floor_areas(DeformGraph& g) {
 Result<MeshEdges> mesh_edges(const TriMesh& mesh) {
   MeshEdges out;
   const int nv = static_cast<int>(mesh.vertices.size());
-  std::unordered_map<std::uint64_t, int> index;
-  index.reserve(mesh.faces.size() * 2);
-  out.face_edges.resize(mesh.faces.size());
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+  const std::size_t nf = mesh.faces.size();
+  out.face_edges.resize(nf);
+  // Half-edges sorted by their undirected key (faster than hashing on large meshes).
+  struct Half {
+    std::uint64_t key;
+    int face, corner;
+  };
+  std::vector<Half> halves;
+  halves.reserve(nf * 3);
+  for (std::size_t f = 0; f < nf; ++f) {
     const Face& t = mesh.faces[f];
-    for (int k = 0; k < 3; ++k) {
-      if (t[static_cast<std::size_t>(k)] < 0 || t[static_cast<std::size_t>(k)] >= nv)
-        return Result<MeshEdges>::error("face " + std::to_string(f) + ": vertex index " +
-                                        std::to_string(t[static_cast<std::size_t>(k)]) + " out of range");
-    }
+    for (std::size_t k = 0; k < 3; ++k)
+      if (t[k] < 0 || t[k] >= nv)
+        return Result<MeshEdges>::error("face " + std::to_string(f) + ": vertex index " + std::to_string(t[k]) +
+                                        " out of range");
     if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
       return Result<MeshEdges>::error("face " + std::to_string(f) + " repeats a vertex");
-    for (std::size_t k = 0; k < 3; ++k) {
-      const int a = t[k], b = t[(k + 1) % 3];
-      auto [it, fresh] = index.try_emplace(edge_key(a, b), static_cast<int>(out.edges.size()));
-      if (fresh) {
-        out.edges.push_back({std::min(a, b), std::max(a, b)});
-        out.edge_faces.push_back({static_cast<int>(f), -1});
-      } else {
-        auto& ef = out.edge_faces[static_cast<std::size_t>(it->second)];
-        if (ef[1] != -1)
-          return Result<MeshEdges>::error("edge (" + std::to_string(a) + ", " + std::to_string(b) +
-                                          ") is shared by more than two faces (non-manifold)");
-        ef[1] = static_cast<int>(f);
-      }
-      out.face_edges[f][k] = it->second;
-    }
+    for (std::size_t k = 0; k < 3; ++k)
+      halves.push_back({edge_key(t[k], t[(k + 1) % 3]), static_cast<int>(f), static_cast<int>(k)});
   }
-  for (const auto& ef : out.edge_faces)
-    if (ef[1] == -1) ++out.boundary_edges;
+  std::sort(halves.begin(), halves.end(), [](const Half& x, const Half& y) {
+    return x.key != y.key ? x.key < y.key : x.face < y.face;
+  });
+  for (std::size_t i = 0; i < halves.size();) {
+    std::size_t j = i + 1;
+    while (j < halves.size() && halves[j].key == halves[i].key) ++j;
+    const Face& t = mesh.faces[static_cast<std::size_t>(halves[i].face)];
+    const int a = t[static_cast<std::size_t>(halves[i].corner)], b = t[static_cast<std::size_t>((halves[i].corner + 1) % 3)];
+    if (j - i > 2)
+      return Result<MeshEdges>::error("edge (" + std::to_string(a) + ", " + std::to_string(b) +
+                                      ") is shared by more than two faces (non-manifold)");
+    const int e = static_cast<int>(out.edges.size());
+    out.edges.push_back({std::min(a, b), std::max(a, b)});
+    out.edge_faces.push_back({halves[i].face, j - i == 2 ? halves[i + 1].face : -1});
+    for (std::size_t k = i; k < j; ++k)
+      out.face_edges[static_cast<std::size_t>(halves[k].face)][static_cast<std::size_t>(halves[k].corner)] = e;
+    if (j - i == 1) ++out.boundary_edges;
+    i = j;
+  }
   return out;
 }
 
@@ -93,29 +101,43 @@ DeformGraph build_edge_graph(const TriMesh& mesh, const MeshEdges& me) {
   g.node_vertices = me.edges;
   g.node_coef.assign(ne, {0.5, 0.5});
   g.area.assign(ne, 0.0);
-  std::vector<Arc> arcs;
-  arcs.reserve(mesh.faces.size() * 6);
+  // Node e has two neighbours per incident face: slots [4e, 4e+2) for edge_faces[e][0],
+  // [4e+2, 4e+4) for edge_faces[e][1]; compacted below for boundary edges.
+  std::vector<int> nbr(ne * 4, -1);
+  std::vector<double> cot(ne * 4, 0.0);
+  auto slot = [&](int e, int f) {
+    const auto& ef = me.edge_faces[static_cast<std::size_t>(e)];
+    return static_cast<std::size_t>(e) * 4 + (ef[0] == f ? 0u : 2u);
+  };
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const Face& t = mesh.faces[f];
-    const Vec3& p0 = mesh.vertices[static_cast<std::size_t>(t[0])];
-    const Vec3& p1 = mesh.vertices[static_cast<std::size_t>(t[1])];
-    const Vec3& p2 = mesh.vertices[static_cast<std::size_t>(t[2])];
-    const double area = 0.5 * (p1 - p0).cross(p2 - p0).norm();
+    const Vec3* p[3] = {&mesh.vertices[static_cast<std::size_t>(t[0])], &mesh.vertices[static_cast<std::size_t>(t[1])],
+                        &mesh.vertices[static_cast<std::size_t>(t[2])]};
+    const double area = 0.5 * (*p[1] - *p[0]).cross(*p[2] - *p[0]).norm();
     if (!(area > 0.0)) ++g.degenerate_triangles;
-    const Vec3* p[3] = {&p0, &p1, &p2};
-    // Edge k joins corners k and k+1; edges k and k-1 (mod 3) share corner k.
+    const int fi = static_cast<int>(f);
+    // Edge k joins corners k and k+1; edges k and k-1 (mod 3) share corner k, and the graph
+    // edge between their midpoints has cot(angle at corner k) as its weight.
     for (std::size_t k = 0; k < 3; ++k) {
       bool clamped = false;
       const double c = clamped_cot(*p[k], *p[(k + 1) % 3], *p[(k + 2) % 3], &clamped);
       if (clamped) ++g.clamped_cotangents;
       const int e_next = me.face_edges[f][k];            // (k, k+1)
       const int e_prev = me.face_edges[f][(k + 2) % 3];  // (k-1, k)
-      arcs.push_back({e_next, e_prev, c});
-      arcs.push_back({e_prev, e_next, c});
+      const std::size_t sn = slot(e_next, fi), sp = slot(e_prev, fi);
+      nbr[sn] = e_prev, cot[sn] = c;          // first slot of e_next in f: neighbour across corner k
+      nbr[sp + 1] = e_next, cot[sp + 1] = c;  // second slot of e_prev in f
       g.area[static_cast<std::size_t>(e_next)] += 0.25 * area;
     }
   }
-  to_csr(arcs, ne, g);
+  g.offsets.assign(ne + 1, 0);
+  g.neighbors.reserve(ne * 4);
+  g.cot.reserve(ne * 4);
+  for (std::size_t e = 0; e < ne; ++e) {
+    for (std::size_t k = 4 * e; k < 4 * e + 4; ++k)
+      if (nbr[k] >= 0) g.neighbors.push_back(nbr[k]), g.cot.push_back(cot[k]);
+    g.offsets[e + 1] = static_cast<int>(g.neighbors.size());
+  }
   floor_areas(g);
   g.face_offsets.assign(ne + 1, 0);
   for (std::size_t e = 0; e < ne; ++e) {

@@ -44,7 +44,7 @@ struct DeformParameters {
   double lambda = 0.5;               // global balance parameter in [0, 1] (5.4)
   std::vector<double> vertex_lambda; // empty, or #V stiffness values; NaN entries use `lambda`
   int max_iterations = 10;           // local/global iterations after the initial solve
-  double tolerance = 1e-5;           // stop when |E_prev - E| / E_prev < tolerance
+  double tolerance = 1e-5;           // stop when |E_prev - E| / E_prev < tolerance (see stats)
 };
 
 struct DeformStats {
@@ -56,7 +56,12 @@ struct DeformStats {
   double factor_ms = 0;
   double initial_solve_ms = 0;
   std::vector<double> iteration_ms;  // one entry per local/global iteration of the last call
-  std::vector<double> energies;      // energy after the initial solve and after each iteration
+  double local_ms = 0, solve_ms = 0;  // deform(): summed over the iterations
+  double energy_ms = 0;               // deform(): the final exact energy
+  // deform(): the energy after the initial solve (identity transforms), then per iteration the
+  // energy of the previous positions with that iteration's new transforms (what the
+  // convergence test compares), then the exact energy of the result.
+  std::vector<double> energies;
   int iterations = 0;
   bool converged = false;
   double max_handle_residual = 0;  // largest |x_h - target_h| (0 by construction)
