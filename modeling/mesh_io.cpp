@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <system_error>
 #include <unistd.h>
 #include <vector>
@@ -24,6 +25,23 @@ std::string lower_extension(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
+}
+
+// CGAL 5.5's PLY_reader::init dereferences the last element when a "property" line comes
+// before any "element" line (segfault found by fuzzing): refuse such headers before CGAL reads.
+bool ply_property_before_element(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  bool element_seen = false;
+  for (int n = 0; n < 100000 && std::getline(in, line); ++n) {
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (keyword == "end_header") break;
+    if (keyword == "element") element_seen = true;
+    if (keyword == "property" && !element_seen && n >= 2) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -46,6 +64,9 @@ Result<TriMesh> read_mesh(const std::string& path) {
     if (probe.peek() == std::ifstream::traits_type::eof())
       return Result<TriMesh>::error(path + ": file is empty");
   }
+
+  if (lower_extension(path) == ".ply" && ply_property_before_element(path))
+    return Result<TriMesh>::error(path + ": cannot parse mesh (malformed .ply header: a property before any element)");
 
   using InPoint = CGAL::Simple_cartesian<double>::Point_3;
   std::vector<InPoint> points;
