@@ -297,6 +297,22 @@ Status finish_sections(SectionSet& set, const std::string& name, Warnings* warni
     const Plane& pl = s.planes[static_cast<std::size_t>(cv.plane)];
     const std::string where = name + ": curve " + std::to_string(c) + " (plane " + std::to_string(cv.plane) + ")";
     auto& pts = cv.points;
+    // Distance to the plane first, then projection, then duplicates (points that differ only
+    // across the plane become duplicates once projected).
+    double worst = 0;
+    std::size_t worst_k = 0;
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      const double dist = std::abs(pl.signed_distance(pts[k]));
+      if (dist > worst) worst = dist, worst_k = k;
+    }
+    if (worst > kWarnProjection * diag)
+      return Status::error(where + ": point " + std::to_string(worst_k) + " lies " + short_num(worst) +
+                           " off its plane, more than 1e-3 of the bounding-box diagonal (" +
+                           short_num(diag) + ")");
+    if (worst > kSilentProjection * diag)
+      w.push_back(where + ": points up to " + short_num(worst) + " off the plane (" +
+                  short_num(worst / diag) + " of the diagonal) projected onto it");
+    for (auto& q : pts) q = pl.project(q);
     if (pts.size() >= 2 && (pts.front() - pts.back()).norm() <= dup_tol) {
       pts.pop_back();
       w.push_back(where + ": first point repeated at the end; dropped the repeat");
@@ -312,20 +328,6 @@ Status finish_sections(SectionSet& set, const std::string& name, Warnings* warni
     if (pts.size() < 3)
       return Status::error(where + ": has " + std::to_string(pts.size()) +
                            " distinct point(s); a curve needs at least 3");
-    double worst = 0;
-    std::size_t worst_k = 0;
-    for (std::size_t k = 0; k < pts.size(); ++k) {
-      const double dist = std::abs(pl.signed_distance(pts[k]));
-      if (dist > worst) worst = dist, worst_k = k;
-    }
-    if (worst > kWarnProjection * diag)
-      return Status::error(where + ": point " + std::to_string(worst_k) + " lies " + short_num(worst) +
-                           " off its plane, more than 1e-3 of the bounding-box diagonal (" +
-                           short_num(diag) + ")");
-    if (worst > kSilentProjection * diag)
-      w.push_back(where + ": points up to " + short_num(worst) + " off the plane (" +
-                  short_num(worst / diag) + " of the diagonal) projected onto it");
-    for (auto& q : pts) q = pl.project(q);
     const double area2 = std::abs(polygon_area2(pts, pl.normal));
     if (!(area2 > 1e-14 * diag * diag))
       return Status::error(where + ": encloses no area (all points on one line)");
