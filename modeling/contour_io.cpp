@@ -297,6 +297,22 @@ Status finish_sections(SectionSet& set, const std::string& name, Warnings* warni
     const Plane& pl = s.planes[static_cast<std::size_t>(cv.plane)];
     const std::string where = name + ": curve " + std::to_string(c) + " (plane " + std::to_string(cv.plane) + ")";
     auto& pts = cv.points;
+    // Distance to the plane first, then projection, then duplicates (points that differ only
+    // across the plane become duplicates once projected).
+    double worst = 0;
+    std::size_t worst_k = 0;
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      const double dist = std::abs(pl.signed_distance(pts[k]));
+      if (dist > worst) worst = dist, worst_k = k;
+    }
+    if (worst > kWarnProjection * diag)
+      return Status::error(where + ": point " + std::to_string(worst_k) + " lies " + short_num(worst) +
+                           " off its plane, more than 1e-3 of the bounding-box diagonal (" +
+                           short_num(diag) + ")");
+    if (worst > kSilentProjection * diag)
+      w.push_back(where + ": points up to " + short_num(worst) + " off the plane (" +
+                  short_num(worst / diag) + " of the diagonal) projected onto it");
+    for (auto& q : pts) q = pl.project(q);
     if (pts.size() >= 2 && (pts.front() - pts.back()).norm() <= dup_tol) {
       pts.pop_back();
       w.push_back(where + ": first point repeated at the end; dropped the repeat");
@@ -312,20 +328,6 @@ Status finish_sections(SectionSet& set, const std::string& name, Warnings* warni
     if (pts.size() < 3)
       return Status::error(where + ": has " + std::to_string(pts.size()) +
                            " distinct point(s); a curve needs at least 3");
-    double worst = 0;
-    std::size_t worst_k = 0;
-    for (std::size_t k = 0; k < pts.size(); ++k) {
-      const double dist = std::abs(pl.signed_distance(pts[k]));
-      if (dist > worst) worst = dist, worst_k = k;
-    }
-    if (worst > kWarnProjection * diag)
-      return Status::error(where + ": point " + std::to_string(worst_k) + " lies " + short_num(worst) +
-                           " off its plane, more than 1e-3 of the bounding-box diagonal (" +
-                           short_num(diag) + ")");
-    if (worst > kSilentProjection * diag)
-      w.push_back(where + ": points up to " + short_num(worst) + " off the plane (" +
-                  short_num(worst / diag) + " of the diagonal) projected onto it");
-    for (auto& q : pts) q = pl.project(q);
     const double area2 = std::abs(polygon_area2(pts, pl.normal));
     if (!(area2 > 1e-14 * diag * diag))
       return Status::error(where + ": encloses no area (all points on one line)");
@@ -469,8 +471,19 @@ Result<SectionSet> parse_contour_json(std::string_view content, const std::strin
       if (!pts.is_array()) throw JsonError{path + ".points: expected an array, found " + type_name(pts)};
       if (pts.size() < 3)
         throw JsonError{path + ".points: has " + std::to_string(pts.size()) + " point(s); a curve needs at least 3"};
-      for (std::size_t k = 0; k < pts.size(); ++k)
-        cs.points.push_back(get_vec3(pts[k], path + ".points[" + std::to_string(k) + "]"));
+      cs.points.reserve(pts.size());
+      for (std::size_t k = 0; k < pts.size(); ++k) {
+        // Fast path for well-formed points; the slow path builds the JSON path for the message.
+        const json& q = pts[k];
+        if (q.is_array() && q.size() == 3 && q[0].is_number() && q[1].is_number() && q[2].is_number()) {
+          const Vec3 v(q[0].get<double>(), q[1].get<double>(), q[2].get<double>());
+          if (finite3(v)) {
+            cs.points.push_back(v);
+            continue;
+          }
+        }
+        cs.points.push_back(get_vec3(q, path + ".points[" + std::to_string(k) + "]"));
+      }
       set.curves.push_back(std::move(cs));
     }
   } catch (const JsonError& e) {
@@ -609,23 +622,17 @@ Result<SectionSet> parse_ctr2suf(std::string_view content, const std::string& na
   auto fail = [&](int at, const std::string& why) {
     return Result<SectionSet>::error(name + ":" + std::to_string(at) + ": " + why);
   };
-  std::string what;
-  auto next_int = [&](long long& v, const std::string& expect) -> bool {
-    what = expect;
-    return tr.next(tok) && parse_int(tok, v);
-  };
-  auto next_double = [&](double& v, const std::string& expect) -> bool {
-    what = expect;
-    return tr.next(tok) && parse_double(tok, v);
-  };
-  auto bad = [&]() {
+  // Messages are built only on failure (building them per token dominated parse time).
+  auto next_int = [&](long long& v) -> bool { return tr.next(tok) && parse_int(tok, v); };
+  auto next_double = [&](double& v) -> bool { return tr.next(tok) && parse_double(tok, v); };
+  auto bad = [&](const std::string& what) {
     if (tok.empty()) return fail(tr.eof_line(), "file ended early: expected " + what);
     return fail(tr.line(), "expected " + what + ", found " + show(tok));
   };
   // Track end-of-file separately from a bad token.
   long long nplanes = 0;
   tok = {};
-  if (!next_int(nplanes, "the number of planes") || nplanes < 0) return bad();
+  if (!next_int(nplanes) || nplanes < 0) return bad("the number of planes");
 
   SectionSet set;
   Warnings w;
@@ -634,16 +641,16 @@ Result<SectionSet> parse_ctr2suf(std::string_view content, const std::string& na
     std::array<double, 4> abcd{};
     for (std::size_t k = 0; k < 4; ++k) {
       tok = {};
-      if (!next_double(abcd[k], "coefficient " + std::string(1, "abcd"[k]) + " of " + pn + " (a b c d for ax+by+cz=d)")) return bad();
+      if (!next_double(abcd[k])) return bad("coefficient " + std::string(1, "abcd"[k]) + " of " + pn + " (a b c d for ax+by+cz=d)");
       if (!std::isfinite(abcd[k])) return fail(tr.line(), "plane coefficient of " + pn + " is not a finite number");
     }
     const int plane_line = tr.line();
     if (abcd[0] == 0.0 && abcd[1] == 0.0 && abcd[2] == 0.0) return fail(plane_line, pn + ": normal (a, b, c) is zero");
     long long nv = 0, ne = 0;
     tok = {};
-    if (!next_int(nv, "the vertex count of " + pn) || nv < 0) return bad();
+    if (!next_int(nv) || nv < 0) return bad("the vertex count of " + pn);
     tok = {};
-    if (!next_int(ne, "the edge count of " + pn) || ne < 0) return bad();
+    if (!next_int(ne) || ne < 0) return bad("the edge count of " + pn);
     Plane pl;
     pl.normal = Vec3(abcd[0], abcd[1], abcd[2]);
     pl.offset = abcd[3];
@@ -654,7 +661,7 @@ Result<SectionSet> parse_ctr2suf(std::string_view content, const std::string& na
       Vec3 q;
       for (int k = 0; k < 3; ++k) {
         tok = {};
-        if (!next_double(q[k], "coordinate of vertex " + std::to_string(v) + " of " + pn)) return bad();
+        if (!next_double(q[k])) return bad("coordinate of vertex " + std::to_string(v) + " of " + pn);
       }
       if (!finite3(q)) return fail(tr.line(), "vertex " + std::to_string(v) + " of " + pn + " has a non-finite coordinate");
       verts.push_back(q);
@@ -669,9 +676,9 @@ Result<SectionSet> parse_ctr2suf(std::string_view content, const std::string& na
       std::array<long long, 4> f{};
       for (std::size_t k = 0; k < 4; ++k) {
         tok = {};
-        if (!next_int(f[k], std::string(k < 2 ? "a vertex index" : "a material label") + " of edge " +
-                                std::to_string(e) + " of " + pn))
-          return bad();
+        if (!next_int(f[k]))
+          return bad(std::string(k < 2 ? "a vertex index" : "a material label") + " of edge " + std::to_string(e) +
+                     " of " + pn);
       }
       const int line = tr.line();
       if (f[0] < 0 || f[0] >= nv || f[1] < 0 || f[1] >= nv)

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <string>
 #include <system_error>
 #include <unistd.h>
 #include <vector>
@@ -24,6 +26,92 @@ std::string lower_extension(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
+}
+
+// CGAL 5.5's PLY_reader::init dereferences the last element when a "property" line comes
+// before any "element" line (segfault found by fuzzing): refuse such headers before CGAL reads.
+bool ply_property_before_element(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  bool element_seen = false;
+  for (int n = 0; n < 100000 && std::getline(in, line); ++n) {
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (keyword == "end_header") break;
+    if (keyword == "element") element_seen = true;
+    if (keyword == "property" && !element_seen && n >= 2) return true;
+  }
+  return false;
+}
+
+// CGAL 5.5's OFF and PLY readers size their arrays from counts in the file (OFF header and
+// per-face corner counts, PLY element counts) before reading the data, so a corrupt count makes
+// them allocate and zero gigabytes (found by fuzzing). No count can exceed the file's size in
+// bytes: refuse such files before CGAL reads them. Returns the reason, or empty.
+std::string implausible_counts(const std::string& path, const std::string& ext) {
+  std::error_code ec;
+  const auto size = static_cast<long long>(std::filesystem::file_size(path, ec));
+  if (ec) return {};
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  auto count_ok = [&](const std::string& tok, long long& v) {
+    try {
+      std::size_t used = 0;
+      v = std::stoll(tok, &used);
+      return used == tok.size();
+    } catch (const std::exception&) {
+      return false;
+    }
+  };
+  if (ext == ".ply") {
+    for (int n = 0; n < 100000 && std::getline(in, line); ++n) {
+      std::istringstream words(line);
+      std::string keyword, name, count;
+      words >> keyword;
+      if (keyword == "end_header") break;
+      long long v = 0;
+      if (keyword == "element" && (words >> name >> count) && count_ok(count, v) && (v < 0 || v > size))
+        return "element " + name + " declares " + count + " items, more than the file's " + std::to_string(size) + " bytes can hold";
+    }
+    return {};
+  }
+  if (ext != ".off") return {};
+  // ASCII OFF, line by line: header, vertex lines, then face lines starting with a corner count.
+  std::vector<std::string> tokens;
+  auto next_line = [&]() {
+    while (std::getline(in, line)) {
+      if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+      std::istringstream words(line);
+      tokens.clear();
+      for (std::string t; words >> t;) tokens.push_back(t);
+      if (!tokens.empty()) return true;
+    }
+    return false;
+  };
+  if (!next_line()) return {};
+  const std::string& kw = tokens[0];
+  if (kw.size() < 3 || kw.compare(kw.size() - 3, 3, "OFF") != 0) return {};
+  if (tokens.size() > 1 && tokens[1] == "BINARY") return {};
+  std::vector<std::string> counts(tokens.begin() + 1, tokens.end());
+  if (counts.empty()) {
+    if (!next_line()) return {};
+    counts = tokens;
+  }
+  long long nv = 0, nf = 0;
+  if (counts.size() < 2 || !count_ok(counts[0], nv) || !count_ok(counts[1], nf)) return {};
+  if (nv < 0 || nf < 0 || nv > size || nf > size)
+    return "header declares " + counts[0] + " vertices and " + counts[1] + " faces, more than the file's " +
+           std::to_string(size) + " bytes can hold";
+  for (long long i = 0; i < nv; ++i)
+    if (!next_line()) return {};
+  for (long long f = 0; f < nf && next_line(); ++f) {
+    long long corners = 0;
+    if (count_ok(tokens[0], corners) && (corners < 0 || corners > size))
+      return "face " + std::to_string(f) + " declares " + tokens[0] + " corners, more than the file's " +
+             std::to_string(size) + " bytes can hold";
+  }
+  return {};
 }
 
 }  // namespace
@@ -46,6 +134,12 @@ Result<TriMesh> read_mesh(const std::string& path) {
     if (probe.peek() == std::ifstream::traits_type::eof())
       return Result<TriMesh>::error(path + ": file is empty");
   }
+
+  if (lower_extension(path) == ".ply" && ply_property_before_element(path))
+    return Result<TriMesh>::error(path + ": cannot parse mesh (malformed .ply header: a property before any element)");
+
+  if (const std::string why = implausible_counts(path, lower_extension(path)); !why.empty())
+    return Result<TriMesh>::error(path + ": cannot parse mesh (" + why + ")");
 
   using InPoint = CGAL::Simple_cartesian<double>::Point_3;
   std::vector<InPoint> points;

@@ -1,9 +1,12 @@
 // Mesh slicer: closed, simple curves on their planes and on the mesh surface; rule 4 at shared
 // lines; plane-set helpers; determinism and metamorphic properties.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 
+#include "modeling/contour_io.h"
 #include "modeling/mesh_io.h"
 #include "modeling/mesh_queries.h"
 #include "modeling/mesh_slicer.h"
@@ -183,4 +186,25 @@ TEST(FormatsSlicer, SimplicityCheckFindsCrossingsTouchingAndFolds) {
   EXPECT_FALSE(polygons_are_simple({square, inner, touching}, &bad));
   EXPECT_EQ(bad, (std::vector<int>{0, 2}));
   EXPECT_FALSE(polygons_are_simple({fold}));
+}
+
+TEST(FormatsSlicer, SliceCommandWritesReadableSectionsOrFailsCleanly) {
+  const std::string mesh = cgal_mesh("blobby.off");
+  if (!std::filesystem::exists(mesh)) GTEST_SKIP() << "no " << mesh;
+  const auto dir = std::filesystem::temp_directory_path() / ("planesketch-formats-slice-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string out = (dir / "blobby.contour").string();
+  const std::string bin = PLANESKETCH_BINARY;
+  ASSERT_EQ(std::system((bin + " slice " + mesh + " -o " + out + " --random-planes 4 --seed 5 2>/dev/null").c_str()), 0);
+  auto r = read_sections(out);
+  ASSERT_TRUE(r) << r.message();
+  EXPECT_GE(r->planes.size(), 2u);
+  auto m = read_mesh(mesh);
+  ASSERT_TRUE(m);
+  EXPECT_LE(max_distance_to_surface(*m, r->all_points()), 1e-6 * bounding_box(m->vertices).diagonal());
+  const std::string open = cgal_mesh("cube-ouvert.off");
+  const std::string bad = (dir / "open.json").string();
+  EXPECT_NE(std::system((bin + " slice " + open + " -o " + bad + " 2>/dev/null").c_str()), 0);
+  EXPECT_FALSE(std::filesystem::exists(bad));
+  std::filesystem::remove_all(dir);
 }

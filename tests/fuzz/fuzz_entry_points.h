@@ -69,7 +69,9 @@ inline std::string check_parse(const std::uint8_t* data, std::size_t size, Conto
     for (std::size_t c = 0; c < r->curves.size(); ++c) {
       const auto& a = ra[c]->points;
       const auto& b = rb[c]->points;
-      if (a.size() != b.size()) return "round trip through " + fmt + " changed the points of curve " + std::to_string(c);
+      if (a.size() != b.size())
+        return "round trip through " + fmt + " changed the point count of curve " + std::to_string(c) + " from " +
+               std::to_string(a.size()) + " to " + std::to_string(b.size());
       for (std::size_t k = 0; k < a.size(); ++k)
         if ((a[k] - b[k]).norm() > 1e-9 * diag) return "round trip through " + fmt + " moved a point";
     }
