@@ -20,6 +20,7 @@ namespace {
 struct Options {
   std::string log, mesh, png, size = "1280x800", report;
   bool quiet = false;
+  bool no_improve = false;
 };
 
 std::pair<int, int> parse_size(const std::string& s) {
@@ -36,13 +37,24 @@ std::pair<int, int> parse_size(const std::string& s) {
 ps::engine::Scene session_scene(const ps::app::SessionDriver& d, int w, int h) {
   using namespace ps::engine;
   Scene scene;
-  scene.camera = d.input().camera;
-  scene.camera.width = w;
-  scene.camera.height = h;
   const auto& st = d.session().state();
   ps::Box3 box = ps::bounding_box(st.model.vertices);
   for (const auto& p : st.sewn.all_points()) box.extend(p);
   if (box.empty()) box.extend(ps::Vec3::Constant(-1.0)), box.extend(ps::Vec3::Constant(1.0));
+  // The picture looks from the log's initial viewing direction, framed on the model (the log's
+  // last camera faces the last plane sketched on, which often shows the model edge-on).
+  scene.camera = d.initial_camera();
+  scene.camera.width = w;
+  scene.camera.height = h;
+  {
+    const ps::Vec3 dir = (scene.camera.eye - scene.camera.target).normalized();
+    const double radius = 0.5 * box.diagonal() * 1.25;
+    const double half_fov = 0.5 * scene.camera.fov_y_deg * M_PI / 180.0 * std::min(1.0, scene.camera.aspect());
+    scene.camera.target = box.center();
+    scene.camera.eye = box.center() + dir * (radius / std::sin(half_fov));
+    scene.camera.near_plane = 0.01 * radius;
+    scene.camera.far_plane = 100.0 * radius;
+  }
   const ps::Vec3 c = box.center();
   const double half = std::max(0.75 * box.size().maxCoeff(), 0.5);
   static const Rgba colors[3] = {{0.90f, 0.25f, 0.25f, 0.16f}, {0.25f, 0.75f, 0.30f, 0.16f},
@@ -79,7 +91,9 @@ void run(const Options& o) {
   if (!log) throw ps::app::CommandFailed(log.message());
   for (const auto& wmsg : warnings) std::cerr << "planesketch: warning: " << wmsg << "\n";
 
-  ps::app::SessionDriver driver;
+  ps::SessionParams params;
+  params.improve = !o.no_improve;
+  ps::app::SessionDriver driver(params);
   ps::replay(*log, driver);
   for (const auto& m : driver.messages())
     std::cerr << "planesketch: " << o.log << ": t=" << m.t << " ms: " << m.text << "\n";
@@ -119,6 +133,7 @@ void run(const Options& o) {
     j["refused"] = nlohmann::json::array();
     for (const auto& m : driver.messages()) j["refused"].push_back({{"t", m.t}, {"message", m.text}});
     j["hints"] = st.hints;
+    j["stroke_latency_ms"] = driver.stroke_latencies_ms();
     std::ofstream f(o.report);
     f << j.dump(2) << "\n";
     if (!f) throw ps::app::CommandFailed(o.report + ": cannot write report");
@@ -134,6 +149,7 @@ void setup(CLI::App& root) {
   cmd->add_option("--size", o->size, "PNG size WIDTHxHEIGHT (default 1280x800)");
   cmd->add_option("--report", o->report, "Write a JSON summary here");
   cmd->add_flag("-q,--quiet", o->quiet, "Less output");
+  cmd->add_flag("--no-improve", o->no_improve, "Skip refinement and smoothing of the model");
   cmd->callback([o] { run(*o); });
 }
 

@@ -1,5 +1,6 @@
 #include "app/session_driver.h"
 
+#include <chrono>
 #include <type_traits>
 #include <variant>
 
@@ -7,7 +8,10 @@ namespace ps::app {
 
 SessionDriver::SessionDriver(SessionParams params) : session_(std::move(params)) {}
 
-void SessionDriver::on_header(const LogHeader& header) { input_ = InputState::from_header(header); }
+void SessionDriver::on_header(const LogHeader& header) {
+  input_ = InputState::from_header(header);
+  initial_camera_ = header.camera;
+}
 
 void SessionDriver::on_pen_sample(const PenSample&) {
   // Whole strokes arrive through on_stroke; single samples only matter to the live preview.
@@ -82,10 +86,12 @@ void SessionDriver::on_stroke(const Stroke& stroke) {
     report(t, 0, "stroke refused: no reference plane is selected");
     return;
   }
+  const auto t0 = std::chrono::steady_clock::now();
   if (auto st = session_.add_window_stroke(pts, input_.camera, *plane); !st) {
     report(t, 0, "stroke refused: " + st.message());
     return;
   }
+  latencies_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   changed();
 }
 

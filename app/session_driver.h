@@ -29,8 +29,12 @@ class SessionDriver : public EventSink {
   const SketchSession& session() const { return session_; }
   SketchSession& session() { return session_; }
   const InputState& input() const { return input_; }
+  // The camera of the log's header (the view the session started from).
+  const Camera& initial_camera() const { return initial_camera_; }
   // Refused strokes and actions, in order (the model was left unchanged for each).
   const std::vector<DriverMessage>& messages() const { return messages_; }
+  // Wall time from pen-up to the rebuilt model, per accepted sketch stroke (ms).
+  const std::vector<double>& stroke_latencies_ms() const { return latencies_; }
   // Called after every change of the model (accepted stroke, delete, undo, redo).
   std::function<void(const SketchSession&)> on_model_changed;
   // Called for a save action with its path (the live app saves; replay leaves it unset).
@@ -42,7 +46,9 @@ class SessionDriver : public EventSink {
 
   SketchSession session_;
   InputState input_;
+  Camera initial_camera_;
   std::vector<DriverMessage> messages_;
+  std::vector<double> latencies_;
 };
 
 }  // namespace ps::app
