@@ -62,7 +62,7 @@ TEST(EngineWindow, PresentsAndResizes) {
 
   // Resize: the next frames use a new swapchain of the new size.
   glfwSetWindowSize(win.window(), 400, 260);
-  for (int i = 0; i < 50 && win.framebuffer_size() != std::pair{400, 260}; ++i) {
+  for (int i = 0; i < 250 && win.framebuffer_size() != std::pair{400, 260}; ++i) {  // up to 5 s
     glfwWaitEventsTimeout(0.02);
   }
   ASSERT_EQ(win.framebuffer_size(), (std::pair{400, 260}));
