@@ -270,7 +270,16 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size()), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) {
         const std::size_t z = uz(todo[i]);
+        // An intermediate union can be non-manifold (two primitives touching along an edge)
+        // even when the whole union is not; retry in other fixed orders (deterministic).
         auto u = union_solids(prims[z].solids);
+        const std::size_t count = prims[z].solids.size();
+        for (std::size_t rot = 1; !u && rot < 2 * count && count > 2; ++rot) {
+          std::vector<TriMesh> order(prims[z].solids);
+          if (rot >= count) std::reverse(order.begin(), order.end());
+          std::rotate(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(rot % count), order.end());
+          u = union_solids(order);
+        }
         if (u) {
           solids[z] = std::move(*u);
           canonicalize(solids[z]);
