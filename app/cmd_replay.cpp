@@ -11,6 +11,7 @@
 #include "app/session_driver.h"
 #include "engine/renderer.h"
 #include "engine/scene.h"
+#include "app/session_scene.h"
 #include "input/stroke_log_io.h"
 #include "modeling/mesh_io.h"
 #include "modeling/mesh_queries.h"
@@ -32,54 +33,6 @@ std::pair<int, int> parse_size(const std::string& s) {
   if (w < 16 || h < 16 || w > 8192 || h > 8192)
     throw ps::app::CommandFailed("--size " + s + ": each side must lie in [16, 8192]");
   return {w, h};
-}
-
-ps::engine::Scene session_scene(const ps::app::SessionDriver& d, int w, int h) {
-  using namespace ps::engine;
-  Scene scene;
-  const auto& st = d.session().state();
-  ps::Box3 box = ps::bounding_box(st.model.vertices);
-  for (const auto& p : st.sewn.all_points()) box.extend(p);
-  if (box.empty()) box.extend(ps::Vec3::Constant(-1.0)), box.extend(ps::Vec3::Constant(1.0));
-  // The picture looks from the log's initial viewing direction, framed on the model (the log's
-  // last camera faces the last plane sketched on, which often shows the model edge-on).
-  scene.camera = d.initial_camera();
-  scene.camera.width = w;
-  scene.camera.height = h;
-  {
-    const ps::Vec3 dir = (scene.camera.eye - scene.camera.target).normalized();
-    const double radius = 0.5 * box.diagonal() * 1.25;
-    const double half_fov = 0.5 * scene.camera.fov_y_deg * M_PI / 180.0 * std::min(1.0, scene.camera.aspect());
-    scene.camera.target = box.center();
-    scene.camera.eye = box.center() + dir * (radius / std::sin(half_fov));
-    scene.camera.near_plane = 0.01 * radius;
-    scene.camera.far_plane = 100.0 * radius;
-  }
-  const ps::Vec3 c = box.center();
-  const double half = std::max(0.75 * box.size().maxCoeff(), 0.5);
-  static const Rgba colors[3] = {{0.90f, 0.25f, 0.25f, 0.16f}, {0.25f, 0.75f, 0.30f, 0.16f},
-                                 {0.25f, 0.40f, 0.95f, 0.16f}};
-  const auto& planes = d.input().planes;
-  for (std::size_t i = 0; i < planes.size(); ++i) {
-    PlaneVisual pv;
-    pv.plane = planes[i];
-    pv.center = planes[i].project(c);
-    pv.half_size = half;
-    const int axis = planes[i].axis();
-    pv.color = colors[axis >= 0 ? axis : static_cast<int>(i % 3)];
-    pv.selected = static_cast<int>(i) == d.input().selected_plane;
-    scene.planes.push_back(pv);
-  }
-  for (const auto& cs : st.sewn.curves) {
-    StrokeVisual sv;
-    sv.points = cs.points;
-    sv.closed = true;
-    sv.color = Rgba{0.95f, 0.70f, 0.10f, 1.0f};
-    sv.width_px = 3.0f;
-    scene.strokes.push_back(std::move(sv));
-  }
-  if (!st.model.empty()) scene.solid = MeshVisual{st.model, Rgba{0.78f, 0.80f, 0.84f, 1.0f}, false};
-  return scene;
 }
 
 void run(const Options& o) {
@@ -115,7 +68,7 @@ void run(const Options& o) {
     ro.validation = ps::engine::validation_requested_by_environment();
     auto renderer = ps::engine::create_offscreen_renderer(ro);
     if (!renderer) throw ps::app::CommandFailed("cannot create a renderer: " + renderer.message());
-    auto image = (*renderer)->render(session_scene(driver, w, h));
+    auto image = (*renderer)->render(ps::app::session_scene(driver, ps::app::framed_camera(driver, w, h)));
     if (!image) throw ps::app::CommandFailed("rendering failed: " + image.message());
     if (auto s = ps::engine::write_png(o.png, *image); !s) throw ps::app::CommandFailed(s.message());
   }

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "modeling/curve_sewing.h"
+#include "modeling/mesh_improve.h"
 
 namespace ps {
 namespace {
@@ -154,9 +155,21 @@ Status SketchSession::commit(SessionState next) {
     auto sewn = sew_curves(next.sections, SewingParams{}, &sewing);
     if (!sewn) return Status::error("stroke rule 4: " + sewn.message());
     ReconstructOptions ro;
-    ro.improve = params_.improve;
+    ro.improve = false;  // improved below, within the interactive budget
     auto mesh = reconstruct(*sewn, ro, &report);
     if (!mesh) return mesh.status();
+    if (params_.improve) {
+      if (mesh->faces.size() <= params_.improve_max_faces) {
+        auto improved = improve_mesh(*mesh, report.curve_vertex, report.curve_edges);
+        if (improved)
+          *mesh = std::move(*improved);
+        else
+          report.warnings.push_back("mesh improvement failed, initial surface kept: " + improved.message());
+      } else {
+        report.warnings.push_back("the model has " + std::to_string(mesh->faces.size()) +
+                                  " faces: shown without refinement and smoothing");
+      }
+    }
     next.sewn = std::move(*sewn);
     next.model = std::move(*mesh);
     next.hints = report.warnings;

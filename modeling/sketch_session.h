@@ -25,7 +25,10 @@ namespace ps {
 
 struct SessionParams {
   StrokeParams stroke;  // preprocessing of cross-section strokes (15 px filter, thesis-facts)
-  bool improve = true;  // refinement + smoothing of the preview
+  bool improve = true;  // refinement + smoothing of the preview (4.5.1)
+  // Above this many faces in the initial union the preview is shown unimproved (with a hint):
+  // the improvement's exact self-intersection checks would stall the interactive loop.
+  std::size_t improve_max_faces = 20000;
   double lambda = 0.5;  // deformation balance, kept for the deformation tool
 };
 
