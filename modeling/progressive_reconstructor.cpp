@@ -274,10 +274,13 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
         // even when the whole union is not; retry in other fixed orders (deterministic).
         auto u = union_solids(prims[z].solids);
         const std::size_t count = prims[z].solids.size();
-        for (std::size_t rot = 1; !u && rot < 2 * count && count > 2; ++rot) {
+        // At most two retries (one rotation, then reversed): a refusal must stay quick.
+        for (std::size_t rot = 1; !u && rot <= 2 && count > 2; ++rot) {
           std::vector<TriMesh> order(prims[z].solids);
-          if (rot >= count) std::reverse(order.begin(), order.end());
-          std::rotate(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(rot % count), order.end());
+          if (rot == 1)
+            std::rotate(order.begin(), order.begin() + 1, order.end());
+          else
+            std::reverse(order.begin(), order.end());
           u = union_solids(order);
         }
         if (u) {
