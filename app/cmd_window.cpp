@@ -74,7 +74,11 @@ class WindowApp {
 
     if (!o_.replay.empty()) {
       run_replay();
-      return;
+      // With a screenshot requested the run is a test: stop here. Otherwise keep the window
+      // open for sketching on top of the replayed model.
+      if (!o_.screenshot.empty() || win_->should_close()) return;
+    } else {
+      start_session();
     }
     run_live();
   }
@@ -86,6 +90,7 @@ class WindowApp {
     auto log = ps::read_stroke_log(o_.replay, &warnings);
     if (!log) throw ps::app::CommandFailed(log.message());
     for (const auto& w : warnings) std::cerr << "planesketch: warning: " << w << "\n";
+    replayed_ = *log;
     ps::StrokeReplayer replayer(std::move(*log));
     const auto t0 = std::chrono::steady_clock::now();
     while (!win_->should_close() && !replayer.done()) {
@@ -104,8 +109,8 @@ class WindowApp {
     if (!o_.screenshot.empty()) screenshot();
   }
 
-  // === Live input
-  void run_live() {
+  // A new session: the default header (three basic planes, a z-up view).
+  void start_session() {
     ps::LogHeader header;
     header.viewport_width = width_;
     header.viewport_height = height_;
@@ -115,10 +120,30 @@ class WindowApp {
     header.camera.eye = ps::Vec3(3.2, -4.2, 2.4);
     header.generator = "planesketch window";
     driver_.on_header(header);
+  }
+
+  // === Live input (journaled)
+  void run_live() {
+    ps::LogHeader header;
+    header.viewport_width = width_;
+    header.viewport_height = height_;
+    header.camera = driver_.input().camera;
+    header.camera.width = width_;
+    header.camera.height = height_;
+    header.planes = driver_.input().planes;
+    header.generator = "planesketch window";
     const std::string journal = o_.journal.empty() ? default_journal_path() : o_.journal;
+    if (replayed_) header = replayed_->header;  // the journal continues the replayed log
     auto rec = ps::StrokeRecorder::open(journal, header);
     if (!rec) throw ps::app::CommandFailed("cannot open the journal: " + rec.message());
     recorder_.emplace(std::move(*rec));
+    double t_origin = 0.0;
+    if (replayed_) {
+      for (const auto& e : replayed_->events)
+        if (auto st = recorder_->record(e.t, e.event); !st)
+          throw ps::app::CommandFailed("cannot write the journal: " + st.message());
+      if (!replayed_->events.empty()) t_origin = replayed_->events.back().t + 1.0;
+    }
     std::cerr << "planesketch: journal " << journal << " (replay it with: planesketch replay " << journal << ")\n";
 
     ps::TabletMapping mapping;
@@ -129,7 +154,7 @@ class WindowApp {
     GLFWwindow* gw = win_->window();
     while (!win_->should_close()) {
       win_->poll_events();
-      const double t = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      const double t = t_origin + std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       handle_keys(gw, t);
       if (tablet) {
         std::vector<ps::PenSample> samples;
@@ -269,6 +294,7 @@ class WindowApp {
   std::unique_ptr<ps::engine::WindowPresenter> win_;
   ps::app::SessionDriver driver_;
   std::optional<ps::StrokeRecorder> recorder_;
+  std::optional<ps::StrokeLog> replayed_;
   ps::StrokeGrouper grouper_;
   std::vector<ps::Vec3> live_;
   std::size_t seen_messages_ = 0;

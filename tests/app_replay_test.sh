@@ -9,8 +9,8 @@ trap 'rm -rf "$tmp"' EXIT
 
 for log in demo figure; do
   "$bin" replay "$src/assets/logs/$log.jsonl" -o "$tmp/$log-1.off" --png "$tmp/$log.png" --size 320x200 \
-    --report "$tmp/$log.json" -q
-  "$bin" replay "$src/assets/logs/$log.jsonl" -o "$tmp/$log-2.off" -q
+    --report "$tmp/$log.json" -q --no-improve
+  "$bin" replay "$src/assets/logs/$log.jsonl" -o "$tmp/$log-2.off" -q --no-improve
   cmp "$tmp/$log-1.off" "$tmp/$log-2.off" || { echo "replay of $log is not bit-identical"; exit 1; }
   [ -s "$tmp/$log.png" ] || { echo "no PNG for $log"; exit 1; }
   python3 - "$tmp/$log.json" <<'PY'
