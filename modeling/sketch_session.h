@@ -28,7 +28,7 @@ struct SessionParams {
   bool improve = true;  // refinement + smoothing of the preview (4.5.1)
   // Above this many faces in the initial union the preview is shown unimproved (with a hint):
   // the improvement's exact self-intersection checks would stall the interactive loop.
-  std::size_t improve_max_faces = 20000;
+  std::size_t improve_max_faces = 6000;
   double lambda = 0.5;  // deformation balance, kept for the deformation tool
 };
 
