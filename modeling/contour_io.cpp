@@ -3,6 +3,8 @@
 // hand-written parser can name the exact line of every problem. JSON goes through nlohmann_json.
 #include "modeling/contour_io.h"
 
+#include "modeling/polygon_triangulate.h"
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -160,20 +162,6 @@ double polygon_area2(const std::vector<Vec3>& pts, const Vec3& n) {
   return s.dot(n);
 }
 
-// Point in polygon (crossing number) in 2D.
-bool inside_2d(const Vec2& p, const std::vector<Vec2>& poly) {
-  bool in = false;
-  const std::size_t n = poly.size();
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2& a = poly[i];
-    const Vec2& b = poly[j];
-    if ((a.y() > p.y()) != (b.y() > p.y())) {
-      const double x = a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
-      if (p.x() < x) in = !in;
-    }
-  }
-  return in;
-}
 
 }  // namespace
 
@@ -831,10 +819,10 @@ std::string format_csl(const SectionSet& set) {
     std::vector<int> depth(ids.size(), 0), parent(ids.size(), -1);
     for (std::size_t a = 0; a < ids.size(); ++a)
       for (std::size_t b = 0; b < ids.size(); ++b)
-        if (a != b && flat[a].size() >= 1 && flat[b].size() >= 3 && inside_2d(flat[a][0], flat[b])) ++depth[a];
+        if (a != b && flat[a].size() >= 1 && flat[b].size() >= 3 && point_in_polygon_2d(flat[a][0], flat[b])) ++depth[a];
     for (std::size_t a = 0; a < ids.size(); ++a)
       for (std::size_t b = 0; b < ids.size(); ++b)
-        if (a != b && flat[b].size() >= 3 && inside_2d(flat[a][0], flat[b]) &&
+        if (a != b && flat[b].size() >= 3 && point_in_polygon_2d(flat[a][0], flat[b]) &&
             (parent[a] < 0 || depth[b] > depth[static_cast<std::size_t>(parent[a])]))
           parent[a] = static_cast<int>(b);
     for (std::size_t c : ids)

@@ -1,5 +1,7 @@
 #include "modeling/curve_sewing.h"
 
+#include "modeling/polygon_triangulate.h"
+
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
@@ -515,18 +517,6 @@ Result<bool> apply_handles(CurveState& cs, const std::vector<HandleRequest>& han
   return true;
 }
 
-// Even-odd point-in-polygon test (used only for points well away from the boundary).
-bool inside(const Vec2& p, const std::vector<Vec2>& poly) {
-  bool in = false;
-  const Index n = poly.size();
-  for (Index i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2& a = poly[i];
-    const Vec2& b = poly[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
-      in = !in;
-  }
-  return in;
-}
 
 }  // namespace
 
@@ -743,8 +733,8 @@ Result<SectionSet> sew_curves(const SectionSet& in, const SewingParams& params, 
         return fail("sewing would make curves " + std::to_string(c) + " and " + std::to_string(d) +
                         " cross at " + fmt3(f.to3d(*x)) + "; redraw them closer to the highlighted points");
       // Nesting (rule 2) must not change either: one curve passing over the other entirely.
-      if (inside(od[0], oc) != inside(state[d].pts[0], state[c].pts) ||
-          inside(oc[0], od) != inside(state[c].pts[0], state[d].pts))
+      if (point_in_polygon_2d(od[0], oc) != point_in_polygon_2d(state[d].pts[0], state[c].pts) ||
+          point_in_polygon_2d(oc[0], od) != point_in_polygon_2d(state[c].pts[0], state[d].pts))
         return fail("sewing would change whether curves " + std::to_string(c) + " and " + std::to_string(d) +
                         " are nested; redraw them closer to the highlighted points");
     }

@@ -16,6 +16,20 @@ double signed_area_2d(const std::vector<Vec2>& poly) {
   return a;
 }
 
+bool point_in_polygon_2d(const Vec2& p, const std::vector<Vec2>& poly) {
+  bool in = false;
+  const std::size_t n = poly.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2& a = poly[i];
+    const Vec2& b = poly[j];
+    if ((a.y() > p.y()) != (b.y() > p.y())) {
+      const double x = a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
+      if (p.x() < x) in = !in;
+    }
+  }
+  return in;
+}
+
 namespace {
 
 double cross2(const Vec2& o, const Vec2& a, const Vec2& b) {

@@ -20,4 +20,8 @@ std::vector<std::array<int, 3>> triangulate_polygon_2d(const std::vector<Vec2>& 
 // Twice the signed area (positive for counter-clockwise).
 double signed_area_2d(const std::vector<Vec2>& poly);
 
+// Even-odd (crossing number) test: is `p` inside the closed polygon `poly`? Meant for points off
+// the boundary; a point on it may go either way.
+bool point_in_polygon_2d(const Vec2& p, const std::vector<Vec2>& poly);
+
 }  // namespace ps

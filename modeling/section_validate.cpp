@@ -2,6 +2,8 @@
 // exact predicates (Epick) so touching and crossing are decided exactly on the projected points.
 #include "modeling/section_validate.h"
 
+#include "modeling/polygon_triangulate.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/intersections.h>
 
@@ -42,20 +44,6 @@ Box2 seg_box(const Vec2& a, const Vec2& b) {
   return r;
 }
 
-// Even-odd point in polygon (the point is never on the polygon: curves do not touch).
-bool inside(const std::vector<Vec2>& poly, const Vec2& p) {
-  bool in = false;
-  const std::size_t n = poly.size();
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2& a = poly[i];
-    const Vec2& b = poly[j];
-    if ((a.y() > p.y()) != (b.y() > p.y())) {
-      const double x = a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
-      if (p.x() < x) in = !in;
-    }
-  }
-  return in;
-}
 
 
 }  // namespace
@@ -262,7 +250,7 @@ Result<ValidatedSections> validate_sections(const SectionSet& in) {
   std::vector<std::vector<int>> containers(m);
   for (std::size_t i = 0; i < m; ++i)
     for (std::size_t j = 0; j < m; ++j)
-      if (i != j && s.curves[i].plane == s.curves[j].plane && inside(poly2[j], poly2[i][0]))
+      if (i != j && s.curves[i].plane == s.curves[j].plane && point_in_polygon_2d(poly2[i][0], poly2[j]))
         containers[i].push_back(static_cast<int>(j));
   for (std::size_t i = 0; i < m; ++i) out.depth[i] = static_cast<int>(containers[i].size());
   for (std::size_t i = 0; i < m; ++i)
