@@ -200,8 +200,19 @@ std::vector<std::array<int, 2>> intersecting_face_pairs(const std::vector<Vec3>&
   const std::ptrdiff_t cutoff = 100;
   std::vector<Box> all;
   all.reserve(faces.size());
-  for (std::size_t f = 0; f < faces.size(); ++f)
-    all.emplace_back(face_box(points, faces[f]), static_cast<int>(f));
+  if (2 * query_faces.size() >= faces.size()) {
+    for (std::size_t f = 0; f < faces.size(); ++f)
+      all.emplace_back(face_box(points, faces[f]), static_cast<int>(f));
+  } else {
+    // Few faces queried (the rollback passes of mesh improvement): only faces whose boxes meet
+    // the hull of the query boxes can intersect one, so the scan sorts those instead of all.
+    CGAL::Bbox_3 hull = face_box(points, faces[idx(query_faces.front())]);
+    for (int f : query_faces) hull += face_box(points, faces[idx(f)]);
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const CGAL::Bbox_3 b = face_box(points, faces[f]);
+      if (CGAL::do_overlap(b, hull)) all.emplace_back(b, static_cast<int>(f));
+    }
+  }
   if (2 * query_faces.size() >= faces.size()) {
     // Most faces are queried: one complete self-intersection scan reports each pair once.
     std::vector<std::uint8_t> queried(faces.size(), 0);

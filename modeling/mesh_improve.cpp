@@ -127,17 +127,24 @@ Result<TriMesh> improve_mesh(const TriMesh& mesh, const std::vector<bool>& fixed
       std::vector<std::uint8_t> query_face(idx(nf), 0);
       for (int f : changed_faces(m, start.faces)) query_face[idx(f)] = 1;
       std::vector<std::array<int, 2>> refinement_pairs;
+      std::vector<std::uint8_t> moved(idx(m.num_vertices()), 0);
+      for (int v = 0; v < m.num_vertices(); ++v) moved[idx(v)] = m.positions[idx(v)] != refined[idx(v)];
+      // The first pass queries every face this round changed. Each later pass queries only the
+      // faces whose corners were just put back (plus the faces of pairs not yet resolved): any
+      // other face kept its position since the previous pass, which tested it against the whole
+      // mesh, so a new intersection must involve a face that moved in between. This keeps the
+      // rollback passes local instead of rescanning the whole mesh each time.
+      std::vector<int> query;
+      for (int f = 0; f < nf; ++f) {
+        const Face& fc = m.faces[idx(f)];
+        if (query_face[idx(f)] || moved[idx(fc[0])] || moved[idx(fc[1])] || moved[idx(fc[2])]) query.push_back(f);
+      }
+      std::vector<std::uint8_t> reset(idx(m.num_vertices()), 0);
       for (;;) {
-        std::vector<std::uint8_t> moved(idx(m.num_vertices()), 0);
-        for (int v = 0; v < m.num_vertices(); ++v) moved[idx(v)] = m.positions[idx(v)] != refined[idx(v)];
-        std::vector<int> query;
-        for (int f = 0; f < nf; ++f) {
-          const Face& fc = m.faces[idx(f)];
-          if (query_face[idx(f)] || moved[idx(fc[0])] || moved[idx(fc[1])] || moved[idx(fc[2])]) query.push_back(f);
-        }
         const auto pairs = intersecting_face_pairs(m.positions, m.faces, query);
         if (pairs.empty()) break;
         int undone = 0;
+        std::vector<std::array<int, 2>> unresolved;
         for (const auto& pr : pairs) {
           bool any_moved = false;
           for (int f : pr)
@@ -145,16 +152,36 @@ Result<TriMesh> improve_mesh(const TriMesh& mesh, const std::vector<bool>& fixed
               if (moved[idx(v)]) {
                 m.positions[idx(v)] = refined[idx(v)];
                 moved[idx(v)] = 0;
+                reset[idx(v)] = 1;
                 any_moved = true;
                 ++undone;
               }
-          if (!any_moved) refinement_pairs.push_back(pr);
+          if (!any_moved) unresolved.push_back(pr);
         }
         rep.smoothing_rollbacks += undone;
         // Undoing some moves can turn a face whose other vertices stay moved.
+        const std::vector<Vec3> before_fold = m.positions;
         rep.smoothing_rollbacks += revert_folded_faces(m, refined);
-        if (undone == 0) break;
-        refinement_pairs.clear();
+        for (int v = 0; v < m.num_vertices(); ++v)
+          if (m.positions[idx(v)] != before_fold[idx(v)]) {
+            reset[idx(v)] = 1;
+            moved[idx(v)] = m.positions[idx(v)] != refined[idx(v)];
+          }
+        if (undone == 0) {
+          refinement_pairs = std::move(unresolved);
+          break;
+        }
+        query.clear();
+        std::vector<std::uint8_t> in_query(idx(nf), 0);
+        for (int f = 0; f < nf; ++f) {
+          const Face& fc = m.faces[idx(f)];
+          if (reset[idx(fc[0])] || reset[idx(fc[1])] || reset[idx(fc[2])]) in_query[idx(f)] = 1;
+        }
+        for (const auto& pr : unresolved)
+          for (int f : pr) in_query[idx(f)] = 1;
+        for (int f = 0; f < nf; ++f)
+          if (in_query[idx(f)]) query.push_back(f);
+        std::fill(reset.begin(), reset.end(), 0);
       }
       rep.check_ms += ms_since(t0);
       if (refinement_pairs.empty() || attempt == 3) {
