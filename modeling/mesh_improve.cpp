@@ -41,9 +41,42 @@ std::vector<int> changed_faces(const HalfedgeMesh& m, const std::vector<Face>& b
 
 }  // namespace
 
+namespace {
+Result<TriMesh> improve_unit_scale(const TriMesh& mesh, const std::vector<bool>& fixed_vertex,
+                                   const std::vector<std::array<int, 2>>& fixed_edges,
+                                   const ImproveOptions& options, ImproveReport* report);
+}  // namespace
+
+// === Scale normalisation
+// The exact predicates' static filters give up on coordinates far from 1 (a model of size 1e-30
+// sent every test to exact arithmetic: minutes instead of milliseconds), and some guards are
+// absolute. The mesh is therefore scaled by a power of two so that its diagonal lies in [1, 2):
+// multiplying by 2^k is exact in floating point, so fixed vertices come back bit-identical.
 Result<TriMesh> improve_mesh(const TriMesh& mesh, const std::vector<bool>& fixed_vertex,
                              const std::vector<std::array<int, 2>>& fixed_edges,
                              const ImproveOptions& options, ImproveReport* report) {
+  const double diag = bounding_box(mesh.vertices).diagonal();
+  if (!std::isfinite(diag) || diag <= 0 || (diag >= 1 && diag < 2))
+    return improve_unit_scale(mesh, fixed_vertex, fixed_edges, options, report);
+  const int k = -std::ilogb(diag);
+  TriMesh scaled = mesh;
+  for (auto& v : scaled.vertices)
+    for (int c = 0; c < 3; ++c) v[c] = std::ldexp(v[c], k);
+  auto out = improve_unit_scale(scaled, fixed_vertex, fixed_edges, options, report);
+  if (!out) return out;
+  for (auto& v : out->vertices)
+    for (int c = 0; c < 3; ++c) v[c] = std::ldexp(v[c], -k);
+  // Fixed vertices never move; restoring them also covers coordinates so far below the model's
+  // size that scaling them made subnormal numbers and lost bits.
+  for (std::size_t v = 0; v < mesh.vertices.size() && v < out->vertices.size(); ++v)
+    if (fixed_vertex[v]) out->vertices[v] = mesh.vertices[v];
+  return out;
+}
+
+namespace {
+Result<TriMesh> improve_unit_scale(const TriMesh& mesh, const std::vector<bool>& fixed_vertex,
+                                   const std::vector<std::array<int, 2>>& fixed_edges,
+                                   const ImproveOptions& options, ImproveReport* report) {
   const auto t_start = Clock::now();
   ImproveReport rep;
 
@@ -78,6 +111,14 @@ Result<TriMesh> improve_mesh(const TriMesh& mesh, const std::vector<bool>& fixed
 
   RefineOptions ropt;
   ropt.alpha = options.alpha;
+  if (options.min_length_fraction > 0) {
+    Box3 curve_box, all_box;
+    for (int v = 0; v < nv; ++v) {
+      all_box.extend(m.position(v));
+      if (fixed[idx(v)]) curve_box.extend(m.position(v));
+    }
+    ropt.min_length = options.min_length_fraction * (curve_box.empty() ? all_box : curve_box).diagonal();
+  }
   ropt.max_faces = options.max_faces;
   ropt.max_flip_normal_angle_deg = options.max_flip_normal_angle_deg;
   SmoothOptions sopt;
@@ -210,6 +251,7 @@ Result<TriMesh> improve_mesh(const TriMesh& mesh, const std::vector<bool>& fixed
   if (report) *report = rep;
   return m.to_trimesh();
 }
+}  // namespace
 
 // === Quality figures
 MeshQuality mesh_quality(const TriMesh& mesh) {

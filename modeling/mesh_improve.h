@@ -41,6 +41,12 @@ struct ImproveOptions {
   int ramp_rounds = 8;
   // Refinement: no splits beyond this many faces (a guard against a tiny curve spacing).
   int max_faces = 400000;
+  // Refinement: length attributes are floored at this fraction of the diagonal of the curve
+  // vertices' bounding box (0: Liepa's attributes unchanged). Densely sampled curves (1000
+  // points on a circle) would otherwise make the whole surface as dense as the curves: 400k
+  // faces and a minute of work for two circles. Triangles next to such curves become fans
+  // from the curve's short edges. See docs/mesh-improvement.md for the measurements.
+  double min_length_fraction = 1.0 / 120.0;
   // Edges whose faces meet at a sharper angle are not flipped (a flip there changes the shape).
   double max_flip_normal_angle_deg = 45.0;
 };

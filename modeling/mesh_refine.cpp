@@ -186,6 +186,8 @@ RefineStats refine_mesh(HalfedgeMesh& m, std::vector<std::uint8_t>& fixed, const
                         const RefineOptions& o) {
   RefineStats stats;
   std::vector<double> sigma = length_attributes(m, fixed);
+  if (o.min_length > 0)
+    for (double& x : sigma) x = std::max(x, o.min_length);
   Relaxer relaxer(m, lock, o);
   // The geometry changed everywhere since the last refinement (smoothing): relax every edge
   // first; later passes only need the edges around the new faces.

@@ -23,6 +23,9 @@ struct RefineOptions {
   double alpha = 1.4142135623730951;  // sqrt(2), Liepa's density control
   int max_passes = 40;                // split + relax passes (each pass splits every eligible face)
   int max_faces = 400000;             // no split beyond this many faces
+  // Floor on every length attribute (0: none). Curves sampled far more densely than the shape
+  // needs would otherwise make the whole surface that dense (see ImproveOptions).
+  double min_length = 0.0;
   // Only edges whose two faces' normals differ by at most this angle are flipped: a flip across
   // a sharper crease would cut or fill the crease (a shape change, not a retriangulation).
   double max_flip_normal_angle_deg = 45.0;

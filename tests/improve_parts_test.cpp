@@ -248,6 +248,33 @@ TEST(Refinement, SplitsNeverMoveVerticesAndKeepCurveEdges) {
   EXPECT_LE(capped.num_faces(), small.max_faces);
 }
 
+// Densely sampled curves (192 points per ring, slab height 1): without a floor the whole
+// surface becomes as dense as the curves; with RefineOptions::min_length no face is split once
+// its vertices are within min_length / alpha of its centroid, so the count drops by about
+// (min_length / curve spacing)^2, and the curves stay intact.
+TEST(Refinement, LengthFloorBoundsTheDensityOfDenselySampledCurves) {
+  const auto in = ps::testing::staircase(3, 192);
+  auto built = HalfedgeMesh::build(in.mesh);
+  ASSERT_TRUE(built.is_ok());
+  for (const auto& e : in.fixed_edges) ASSERT_TRUE(built->constrain_edge(e[0], e[1]));
+  const std::vector<std::uint8_t> fixed0(in.fixed_vertex.begin(), in.fixed_vertex.end());
+  HalfedgeMesh dense = *built, floored = *built;
+  std::vector<std::uint8_t> f1 = fixed0, f2 = fixed0;
+  refine_mesh(dense, f1);
+  RefineOptions o;
+  const double spacing = 2.0 * std::numbers::pi / 192.0;  // ~0.033 on the unit rings
+  o.min_length = 4.0 * spacing;
+  refine_mesh(floored, f2, {}, o);
+  EXPECT_LT(floored.num_faces() * 4, dense.num_faces()) << floored.num_faces() << " vs " << dense.num_faces();
+  EXPECT_GT(floored.num_faces(), static_cast<int>(in.mesh.faces.size()));  // still refines the long bands
+  for (const auto& e : in.fixed_edges) {
+    const int h = floored.find_halfedge(e[0], e[1]);
+    ASSERT_GE(h, 0);
+    EXPECT_TRUE(floored.is_constrained(h));
+  }
+  expect_valid(floored.to_trimesh());
+}
+
 // === Smoothing (Eq. 4.3)
 
 TEST(Smoothing, ARegularIcosahedronIsAFixedPointOfCurvatureEvening) {
