@@ -11,11 +11,13 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <tuple>
 
 #include "modeling/cylinder_builder.h"
 #include "modeling/mesh_topology.h"
+#include "modeling/reconstruction_limits.h"
 #include "modeling/section_validate.h"
 #include "modeling/zone_partition.h"
 #include "modeling/zone_stitch.h"
@@ -138,6 +140,33 @@ void curve_flags(const TriMesh& m, const SectionSet& s, double tol, std::vector<
   }
 }
 
+// === Scale normalisation helpers (powers of two: exact)
+int scale_exponent(const Box3& box) {
+  const double d = box.diagonal();
+  if (!std::isfinite(d) || d <= 0) return 0;
+  return -std::ilogb(d);
+}
+
+Box3 scaled_box(const Box3& b, int k) {
+  Box3 out;
+  for (int c = 0; c < 3; ++c) {
+    out.min[c] = std::ldexp(b.min[c], k);
+    out.max[c] = std::ldexp(b.max[c], k);
+  }
+  return out;
+}
+
+ValidatedSections scaled_sections(const ValidatedSections& in, int k) {
+  ValidatedSections out = in;
+  if (k == 0) return out;
+  for (auto& pl : out.sections.planes) pl.offset = std::ldexp(pl.offset, k);
+  for (auto& c : out.sections.curves)
+    for (auto& p : c.points)
+      for (int i = 0; i < 3; ++i) p[i] = std::ldexp(p[i], k);
+  out.diagonal = std::ldexp(out.diagonal, k);
+  return out;
+}
+
 }  // namespace
 
 void set_improve_hook(ImproveHook hook) { g_improve_hook = hook; }
@@ -198,6 +227,7 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
 
   // === Validate (messages name the caller's curve indices), then canonicalise.
   auto t = Clock::now();
+  if (Status size = check_reconstruction_size(input); !size) return size;
   auto checked = validate_sections(input);
   if (!checked) return checked.status();
   SectionSet canonical = canonical_sections(checked->sections);
@@ -230,7 +260,17 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
       }
   }
   if (!inside) box = default_reconstruction_box(points);
-  auto part = partition_zones(*valid, box);
+  // === Scale normalisation. Everything below runs on the input scaled by 2^k so that the box
+  // diagonal lies in [1, 2): CGAL's static filters give up far from unit scale (coordinates of
+  // 1e-30 sent every predicate to exact arithmetic: minutes instead of milliseconds), and a few
+  // guards downstream are absolute. Multiplying by a power of two is exact, so the curve points
+  // come back bit-identical and k is a function of the box alone (the cache stays valid while
+  // the box is kept).
+  const int k = scale_exponent(box);
+  const ValidatedSections scaled = scaled_sections(*valid, k);
+  const Box3 user_box = box;
+  box = scaled_box(box, k);
+  auto part = partition_zones(scaled, box);
   if (!part) return part.status();
   rep.zones = static_cast<int>(part->zones.size());
   rep.empty_zones = part->count(ZoneType::kEmpty);
@@ -314,7 +354,7 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
   if (topo.components > 1)
     rep.warnings.push_back("result has " + std::to_string(topo.components) +
                            " components; a new section near the separate parts may join them");
-  curve_flags(mesh, s, 1e-9 * diag, rep.curve_vertex, rep.curve_edges);
+  curve_flags(mesh, scaled.sections, 1e-9 * diag, rep.curve_vertex, rep.curve_edges);
   rep.timings.stitch_ms = ms_since(t);
   progress("stitch", 1.0);
 
@@ -331,7 +371,7 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
         if (mesh.vertices.size() != rep.curve_vertex.size()) {
           rep.curve_vertex.clear();
           rep.curve_edges.clear();
-          curve_flags(mesh, s, 1e-9 * diag, rep.curve_vertex, rep.curve_edges);
+          curve_flags(mesh, scaled.sections, 1e-9 * diag, rep.curve_vertex, rep.curve_edges);
         }
       } else {
         rep.warnings.push_back("mesh improvement failed, initial mesh kept: " + improved.message());
@@ -343,12 +383,16 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
     progress("improve", 1.0);
   }
 
+  // Back to the caller's units: exact, and curve vertices are the input points themselves.
+  for (auto& v : mesh.vertices)
+    for (int c = 0; c < 3; ++c) v[c] = std::ldexp(v[c], -k);
+
   // === Commit state
   std::multimap<std::uint64_t, CacheEntry> cache;
   for (std::size_t z = 0; z < prims.size(); ++z)
     if (!prims[z].solids.empty()) cache.emplace(keys[z], CacheEntry{prims[z].solids, solids[z]});
   cache_ = std::move(cache);
-  box_ = box;
+  box_ = user_box;
   box_fixed_ = true;
   sections_ = input;
   mesh_ = mesh;

@@ -54,7 +54,10 @@ Box3 default_reconstruction_box(const std::vector<Vec3>& points) {
   Box3 out;
   if (b.empty()) return out;
   const Vec3 c = b.center();
-  const double largest = std::max(b.size().maxCoeff(), 1e-12);
+  // Relative to the points only: an absolute floor here made the box of a model 1e-30 across
+  // 1e-12 wide. Coincident points (refused by validation anyway) get a unit box.
+  const double extent = b.size().maxCoeff();
+  const double largest = extent > 0 ? extent : 1.0;
   for (int k = 0; k < 3; ++k) {
     const double half = std::max(b.size()[k], 0.5 * largest);
     out.min[k] = c[k] - half;
