@@ -317,8 +317,19 @@ Status finish_sections(SectionSet& set, const std::string& name, Warnings* warni
       return Status::error(where + ": has " + std::to_string(pts.size()) +
                            " distinct point(s); a curve needs at least 3");
     const double area2 = std::abs(polygon_area2(pts, pl.normal));
-    if (!(area2 > 1e-14 * diag * diag))
-      return Status::error(where + ": encloses no area (all points on one line)");
+    if (!(area2 > 1e-14 * diag * diag)) {
+      // Zero signed area has two causes; name the right one. All points on one line, or loops
+      // of opposite orientation that cancel (a figure eight: the curve crosses itself).
+      std::size_t far = 0;
+      for (std::size_t k = 1; k < pts.size(); ++k)
+        if ((pts[k] - pts[0]).squaredNorm() > (pts[far] - pts[0]).squaredNorm()) far = k;
+      const Vec3 dir = (pts[far] - pts[0]).normalized();
+      double off_line = 0;
+      for (const auto& q : pts) off_line = std::max(off_line, ((q - pts[0]) - (q - pts[0]).dot(dir) * dir).norm());
+      if (far == 0 || !(off_line > 1e-9 * diag))
+        return Status::error(where + ": encloses no area (all points on one line)");
+      return Status::error(where + ": encloses no area: its loops cancel, so the curve crosses itself (rule 3)");
+    }
   }
   if (warnings) warnings->insert(warnings->end(), w.begin(), w.end());
   set = std::move(s);
