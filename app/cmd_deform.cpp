@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -69,6 +70,14 @@ void run(const DeformArgs& a) {
     throw CommandFailed(a.mesh + ": mesh is not 2-manifold (" + std::to_string(topo.nonmanifold_edges) +
                         " non-manifold edges, " + std::to_string(topo.nonmanifold_vertices) +
                         " non-manifold vertices); deformation needs a manifold triangle mesh");
+  // Open or inconsistently oriented meshes deform correctly (the energy uses unsigned angles
+  // and areas, boundary edges have fewer neighbours), but the user should know what they gave.
+  if (topo.boundary_edges > 0)
+    std::cerr << "planesketch: warning: " << a.mesh << ": mesh is open (" << topo.boundary_edges
+              << " boundary edges); it is deformed as an open surface\n";
+  if (!topo.consistently_oriented)
+    std::cerr << "planesketch: warning: " << a.mesh
+              << ": faces are not consistently oriented; each face keeps its orientation\n";
   if (Status ok = check_deform_spec(*spec, mesh->num_vertices(), a.spec); !ok) throw CommandFailed(ok.message());
 
   EdgeGraphDeformer deformer;
