@@ -650,6 +650,10 @@ Result<StrokeLog> read_stroke_log(std::istream& in, const std::string& name,
 }
 
 Result<StrokeLog> read_stroke_log(const std::string& path, std::vector<std::string>* warnings) {
+  // An ifstream opens a directory without complaint and reads nothing from it.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    return Result<StrokeLog>::error(path + ": is a directory, not a stroke log");
   std::ifstream in(path, std::ios::binary);
   if (!in) return Result<StrokeLog>::error(path + ": cannot open: " + std::strerror(errno));
   return read_stroke_log(in, path, warnings);
