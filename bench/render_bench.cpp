@@ -17,36 +17,13 @@
 #include "engine/frame_geometry.h"
 #include "engine/renderer.h"
 #include "engine/scene.h"
+#include "tests/mesh_fixtures.h"
 
 namespace {
 
 using ps::Vec3;
 
-// A UV sphere with 2 * segments * (rings - 1) triangles.
-ps::TriMesh uv_sphere(double r, int rings, int segments) {
-  ps::TriMesh m;
-  m.vertices.push_back(Vec3(0, r, 0));
-  for (int i = 1; i < rings; ++i) {
-    const double th = M_PI * i / rings;
-    for (int j = 0; j < segments; ++j) {
-      const double ph = 2 * M_PI * j / segments;
-      m.vertices.push_back(
-          r * Vec3(std::sin(th) * std::cos(ph), std::cos(th), -std::sin(th) * std::sin(ph)));
-    }
-  }
-  m.vertices.push_back(Vec3(0, -r, 0));
-  const int south = int(m.vertices.size()) - 1;
-  const auto at = [&](int ring, int seg) { return 1 + (ring - 1) * segments + (seg % segments); };
-  for (int j = 0; j < segments; ++j) m.faces.push_back({0, at(1, j), at(1, j + 1)});
-  for (int i = 1; i + 1 < rings; ++i)
-    for (int j = 0; j < segments; ++j) {
-      m.faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      m.faces.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-    }
-  for (int j = 0; j < segments; ++j)
-    m.faces.push_back({south, at(rings - 1, j + 1), at(rings - 1, j)});
-  return m;
-}
+ps::TriMesh uv_sphere(double r, int rings, int segments) { return ps::testing::uv_sphere(Vec3::Zero(), r, rings, segments); }
 
 struct Figures {
   double median_ms, min_ms, median_cpu_ms;

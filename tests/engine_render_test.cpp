@@ -14,6 +14,7 @@
 #include "engine/renderer.h"
 #include "engine/scene.h"
 #include "modeling/mesh_io.h"
+#include "tests/mesh_fixtures.h"
 
 namespace ps::engine {
 namespace {
@@ -70,46 +71,8 @@ bool update_goldens() {
 
 // === Test content (procedural, so the goldens depend on no data files)
 
-TriMesh uv_sphere(const Vec3& c, double r, int rings, int segments) {
-  TriMesh m;
-  m.vertices.push_back(c + Vec3(0, r, 0));
-  for (int i = 1; i < rings; ++i) {
-    const double th = M_PI * i / rings;
-    for (int j = 0; j < segments; ++j) {
-      const double ph = 2 * M_PI * j / segments;
-      m.vertices.push_back(c + r * Vec3(std::sin(th) * std::cos(ph), std::cos(th),
-                                        -std::sin(th) * std::sin(ph)));
-    }
-  }
-  m.vertices.push_back(c + Vec3(0, -r, 0));
-  const int south = int(m.vertices.size()) - 1;
-  const auto at = [&](int ring, int seg) { return 1 + (ring - 1) * segments + (seg % segments); };
-  for (int j = 0; j < segments; ++j) m.faces.push_back({0, at(1, j), at(1, j + 1)});
-  for (int i = 1; i + 1 < rings; ++i)
-    for (int j = 0; j < segments; ++j) {
-      m.faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      m.faces.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-    }
-  for (int j = 0; j < segments; ++j) m.faces.push_back({south, at(rings - 1, j + 1), at(rings - 1, j)});
-  return m;
-}
-
-TriMesh torus(const Vec3& c, double big, double small, int nu, int nv) {
-  TriMesh m;
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv;
-      m.vertices.push_back(c + Vec3((big + small * std::cos(v)) * std::cos(u), small * std::sin(v),
-                                    (big + small * std::cos(v)) * std::sin(u)));
-    }
-  const auto id = [&](int i, int j) { return (i % nu) * nv + (j % nv); };
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      m.faces.push_back({id(i, j), id(i, j + 1), id(i + 1, j)});
-      m.faces.push_back({id(i + 1, j), id(i, j + 1), id(i + 1, j + 1)});
-    }
-  return m;
-}
+using ps::testing::torus;
+using ps::testing::uv_sphere;
 
 constexpr int kW = 256, kH = 160;
 
