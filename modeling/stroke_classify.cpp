@@ -59,11 +59,15 @@ Result<StrokeClassification> classify_stroke(const std::vector<Vec2>& raw, const
       return R::error("stroke sample " + std::to_string(i) + " is not finite (" + fmt("%g", raw[i].x()) + ", " +
                       fmt("%g", raw[i].y()) + ")");
   if (raw.size() < 2) return R::error("stroke has only 1 sample; a stroke needs at least 2");
-  if (!(params.fine_spacing_px >= 0.0) || !(params.silhouette_step_px > 0.0) || !(params.min_overdraw > 0.0) ||
-      !(params.reversal_turn_deg > 0.0 && params.reversal_turn_deg < 180.0) || params.min_reversals < 1)
+  auto finite_at_least = [](double v, double lo) { return std::isfinite(v) && v >= lo; };
+  if (!finite_at_least(params.fine_spacing_px, 0.0) || !(params.silhouette_step_px > 0.0) ||
+      !finite_at_least(params.min_leg_px, 0.5) || !finite_at_least(params.min_leg_fraction, 0.0) ||
+      !(params.min_overdraw > 0.0) || !(params.reversal_turn_deg > 0.0 && params.reversal_turn_deg < 180.0) ||
+      params.min_reversals < 1 || std::isnan(params.min_length_px))
     return R::error(
-        "stroke classification parameters invalid: need fine_spacing_px >= 0, silhouette_step_px > 0, "
-        "min_overdraw > 0, 0 < reversal_turn_deg < 180, min_reversals >= 1");
+        "stroke classification parameters invalid: need finite fine_spacing_px >= 0, min_leg_px >= 0.5, "
+        "min_leg_fraction >= 0, silhouette_step_px > 0, min_overdraw > 0, 0 < reversal_turn_deg < 180, "
+        "min_reversals >= 1");
 
   StrokeClassification out;
   StrokeFeatures& f = out.features;

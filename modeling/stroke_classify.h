@@ -28,7 +28,8 @@
 // throw. An empty function means "no model": every open stroke is then kOpenMiss.
 //
 // Errors (Result with a message, never a crash): an empty stroke, a stroke with fewer than 2
-// samples, a non-finite sample (naming its index), a stroke shorter than `min_length_px`.
+// samples, a non-finite sample (naming its index), a stroke shorter than `min_length_px`,
+// parameters out of range.
 #include <functional>
 #include <string>
 #include <string_view>

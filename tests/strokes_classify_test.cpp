@@ -313,6 +313,11 @@ TEST(StrokeClassify, BadInputIsRefusedWithAMessage) {
   StrokeClassifyParams bad;
   bad.silhouette_step_px = 0;
   EXPECT_FALSE(classify_stroke({Vec2(600, 400), Vec2(700, 400)}, in, bad));
+  StrokeClassifyParams nan_leg;
+  nan_leg.min_leg_px = nan;
+  auto p = classify_stroke({Vec2(600, 400), Vec2(700, 400)}, in, nan_leg);
+  ASSERT_FALSE(p);
+  EXPECT_NE(p.message().find("parameters invalid"), std::string::npos) << p.message();
 }
 
 TEST(StrokeClassify, ClassNamesRoundTrip) {
