@@ -5,7 +5,10 @@
 #include <cmath>
 #include <random>
 
+#include "input/stroke_corpus.h"
 #include "modeling/curve_sewing.h"
+#include "modeling/polygon_triangulate.h"
+#include "modeling/stroke_classify.h"
 #include "modeling/polyline_crossing.h"
 #include "modeling/stroke_preprocess.h"
 
@@ -133,6 +136,32 @@ void BM_RequiredCrossings(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(required_crossings(s, target));
 }
 BENCHMARK(BM_RequiredCrossings)->Unit(benchmark::kMicrosecond);
+
+// Stroke recognition over the generated labelled corpus (input/stroke_corpus.h: 150 strokes per
+// class over a disc, an ellipse and a blob, 200 Hz): time per stroke and accuracy.
+void BM_ClassifyCorpus(benchmark::State& state) {
+  static const auto corpus = make_stroke_corpus();
+  static const auto sil = corpus_silhouettes();
+  std::vector<std::vector<Vec2>> pts;
+  std::size_t samples = 0;
+  for (const auto& ls : corpus) pts.push_back(stroke_positions(ls.samples)), samples += pts.back().size();
+  std::vector<InsideModelFn> inside;
+  for (const auto& s : sil) inside.push_back([&s](const Vec2& p) { return point_in_polygon_2d(p, s.outline); });
+  std::size_t right = 0;
+  for (auto _ : state) {
+    right = 0;
+    for (std::size_t i = 0; i < corpus.size(); ++i) {
+      auto c = classify_stroke(pts[i], inside[corpus[i].silhouette]);
+      if (c && c->cls == corpus[i].label) ++right;
+    }
+  }
+  state.counters["strokes"] = static_cast<double>(corpus.size());
+  state.counters["mean_samples"] = static_cast<double>(samples) / static_cast<double>(corpus.size());
+  state.counters["accuracy"] = static_cast<double>(right) / static_cast<double>(corpus.size());
+  state.counters["strokes_per_s"] =
+      benchmark::Counter(static_cast<double>(corpus.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_ClassifyCorpus)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
