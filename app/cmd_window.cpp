@@ -1,7 +1,7 @@
 // planesketch window [--replay LOG] [--screenshot FILE] [--journal FILE] [--size WxH]
 // The interactive window: GLFW + Vulkan swapchain (engine/window_presenter.h), pen input from
 // libinput when the seat allows it, else the mouse (pressure 1), every event journaled to a
-// stroke log as it happens (fsync per stroke) and applied through the same SessionDriver that
+// stroke log as it happens (fsync per stroke, end marker on a clean exit) and applied through the same SessionDriver that
 // headless replay uses.
 //
 // Keys: 1/2/3 select the x/y/z plane (the view turns to face it), Up/Down move the selected plane
@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "app/commands.h"
+#include "app/journal.h"
 #include "app/session_driver.h"
 #include "app/session_scene.h"
 #include "engine/image.h"
@@ -40,18 +41,6 @@ std::pair<int, int> parse_size(const std::string& s) {
   const int w = std::stoi(m[1]), h = std::stoi(m[2]);
   if (w < 64 || h < 64 || w > 8192 || h > 8192) throw ps::app::CommandFailed("--size " + s + ": each side must lie in [64, 8192]");
   return {w, h};
-}
-
-std::string default_journal_path() {
-  namespace fs = std::filesystem;
-  const char* state = std::getenv("XDG_STATE_HOME");
-  const char* home = std::getenv("HOME");
-  fs::path dir = state && *state ? fs::path(state) / "planesketch"
-                                 : fs::path(home && *home ? home : "/tmp") / ".local/state/planesketch";
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  const auto now = std::chrono::system_clock::now().time_since_epoch();
-  return (dir / ("journal-" + std::to_string(std::chrono::duration_cast<std::chrono::seconds>(now).count()) + ".jsonl")).string();
 }
 
 // Rotate `v` about unit `axis` by `angle` radians (Rodrigues).
@@ -132,7 +121,12 @@ class WindowApp {
     header.camera.height = height_;
     header.planes = driver_.input().planes;
     header.generator = "planesketch window";
-    const std::string journal = o_.journal.empty() ? default_journal_path() : o_.journal;
+    if (!replayed_)  // the next start offers to recover a session that died
+      if (const auto j = ps::app::newest_unfinished_journal(ps::app::journal_dir()))
+        std::cerr << "planesketch: an unfinished session journal is waiting: " << j->path.string()
+                  << " (recover it with: planesketch --recover " << j->path.string()
+                  << " -o recovered.obj, or continue it with: planesketch window --replay " << j->path.string() << ")\n";
+    const std::string journal = o_.journal.empty() ? ps::app::new_journal_path(ps::app::journal_dir()) : o_.journal;
     if (replayed_) header = replayed_->header;  // the journal continues the replayed log
     auto rec = ps::StrokeRecorder::open(journal, header);
     if (!rec) throw ps::app::CommandFailed("cannot open the journal: " + rec.message());
@@ -164,7 +158,8 @@ class WindowApp {
       handle_mouse(gw, t);
       present(driver_.input().camera);
     }
-    (void)recorder_->close();
+    // A clean exit: the end marker tells crash recovery this session needs none.
+    if (auto st = recorder_->finish(); !st) std::cerr << "planesketch: journal: " << st.message() << "\n";
   }
 
   void act(double t, const ps::Event& e) {

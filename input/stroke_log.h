@@ -15,6 +15,7 @@
 //   Reference plane indices: planes[k] of the header; 0, 1, 2 are the thesis's basic planes
 //   x = c, y = c, z = c (thesis 3.2.1). A TranslatePlane sets the plane's absolute offset.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -117,6 +118,10 @@ struct LogHeader {
 struct StrokeLog {
   LogHeader header;
   std::vector<TimedEvent> events;
+  // The session-end marker (`{"t":..,"type":"end"}`, always the last line): the time at which
+  // the app closed the log cleanly. Absent in a journal whose app died (crash recovery looks
+  // for those) and in logs written before the marker existed. Not an event: sinks never see it.
+  std::optional<double> end_t;
 };
 
 // A pen stroke: the samples from down through up (no hover, no proximity samples).

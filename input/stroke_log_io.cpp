@@ -284,7 +284,24 @@ Result<std::string> to_jsonl(const StrokeLog& log) {
     out += *line;
     out += '\n';
   }
+  if (log.end_t) {
+    if (*log.end_t < last)
+      return Result<std::string>::error("end marker: time " + num(*log.end_t) + " ms goes back (previous " +
+                                        num(last) + " ms)");
+    auto line = format_end(*log.end_t);
+    if (!line) return Result<std::string>::error("end marker: " + line.message());
+    out += *line;
+    out += '\n';
+  }
   return out;
+}
+
+Result<std::string> format_end(double t) {
+  if (!std::isfinite(t) || t < 0.0) return Result<std::string>::error("time t must be finite and >= 0");
+  json j;
+  j["t"] = t;
+  j["type"] = "end";
+  return dump_line(j);
 }
 
 Status write_stroke_log(const std::string& path, const StrokeLog& log, bool overwrite) {
@@ -448,8 +465,9 @@ std::string parse_header(const json& j, LogHeader& h) {
   return {};
 }
 
-// Parses one event line. Sets `unknown` (and returns "") for an unknown type.
-std::string parse_event(const json& j, TimedEvent& out, std::string& unknown) {
+// Parses one event line. Sets `unknown` (and returns "") for an unknown type, and `end` for the
+// session-end marker (only out.t is set then).
+std::string parse_event(const json& j, TimedEvent& out, std::string& unknown, bool& end) {
   if (!j.is_object()) return "event must be a JSON object";
   Obj o{j};
   std::string type;
@@ -517,6 +535,9 @@ std::string parse_event(const json& j, TimedEvent& out, std::string& unknown) {
     Save a;
     PS_TRY(o.string("path", a.path));
     out.event = a;
+  } else if (type == "end") {
+    end = true;
+    return {};
   } else {
     unknown = type;
     return {};
@@ -588,6 +609,7 @@ Result<StrokeLog> parse_stroke_log(std::string_view text, const std::string& nam
   bool have_header = false;
   double last_t = 0.0;
   int last_t_line = 0;
+  int end_line = 0;
   int line_no = 0;
   std::size_t pos = 0;
   while (pos < text.size()) {
@@ -620,10 +642,21 @@ Result<StrokeLog> parse_stroke_log(std::string_view text, const std::string& nam
       }
       return fail(line_no, err);
     }
+    if (log.end_t)
+      return fail(line_no, "line after the session's end marker (line " + std::to_string(end_line) + ")");
     TimedEvent ev;
     ev.line = line_no;
     std::string unknown;
-    if (std::string e = parse_event(j, ev, unknown); !e.empty()) return fail(line_no, e);
+    bool end = false;
+    if (std::string e = parse_event(j, ev, unknown, end); !e.empty()) return fail(line_no, e);
+    if (end) {
+      if (ev.t < last_t)
+        return fail(line_no, "end marker time t = " + num(ev.t) + " ms goes back (line " +
+                                 std::to_string(last_t_line) + " has t = " + num(last_t) + " ms)");
+      log.end_t = ev.t;
+      end_line = line_no;
+      continue;
+    }
     if (!unknown.empty()) {
       if (warnings)
         warnings->push_back(name + ":" + std::to_string(line_no) + ": skipped unknown event type '" +

@@ -34,6 +34,8 @@ Result<StrokeLog> read_stroke_log(const std::string& path,
 // reading gives back the same bits.
 Result<std::string> format_header(const LogHeader& header);
 Result<std::string> format_event(const TimedEvent& event);
+// The session-end marker line {"t":t,"type":"end"} (docs/stroke-log.md, "Session end").
+Result<std::string> format_end(double t);
 // The whole log as JSON Lines (every line ends with '\n'); checks time order too.
 Result<std::string> to_jsonl(const StrokeLog& log);
 // Writes to `path`; refuses an existing file unless `overwrite`. Writes a temporary file and

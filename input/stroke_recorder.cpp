@@ -2,6 +2,7 @@
 #include "input/stroke_recorder.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -23,6 +24,10 @@ Result<StrokeRecorder> StrokeRecorder::open(const std::string& path, const LogHe
       return Result<StrokeRecorder>::error(path + ": exists (refusing to overwrite a stroke log)");
     return Result<StrokeRecorder>::error(path + ": cannot open for writing: " + std::strerror(errno));
   }
+  // An exclusive advisory lock for as long as the recorder is open (the kernel drops it when
+  // the process dies, even by SIGKILL): crash recovery skips journals still locked by a live
+  // session. Best effort; a file system without flock still records.
+  (void)::flock(fd, LOCK_EX | LOCK_NB);
   StrokeRecorder rec(fd, path);
   if (auto s = rec.write_line(*head); !s) return s;
   if (auto s = rec.sync(); !s) return s;
@@ -78,6 +83,18 @@ Status StrokeRecorder::record(double t, const Event& event) {
   const auto* pen = std::get_if<PenSample>(&event);
   if (!pen || pen->phase == Phase::kUp) return sync();
   return Status::ok();
+}
+
+Status StrokeRecorder::finish(double t) {
+  if (fd_ < 0) return Status::error(path_ + ": recorder is closed");
+  if (t < last_t_)
+    return Status::error(path_ + ": end marker refused: time " + std::to_string(t) +
+                         " ms is before the previous event (" + std::to_string(last_t_) + " ms)");
+  auto line = format_end(t);
+  if (!line) return Status::error(path_ + ": end marker refused: " + line.message());
+  if (auto s = write_line(*line); !s) return s;
+  last_t_ = t;
+  return close();
 }
 
 Status StrokeRecorder::sync() {

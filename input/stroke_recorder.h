@@ -6,7 +6,8 @@
 // with a warning. On pen-up (a completed stroke) and on every UI action the file is also
 // fsync'ed, so a completed stroke survives even a power cut. Events are checked before they
 // are written (finite values, pressure range, time order); a refused event leaves the file
-// unchanged and returns the reason.
+// unchanged and returns the reason. While open, the file holds an exclusive flock(2), so crash
+// recovery can tell a journal of a live session from one whose app died.
 #include <string>
 
 #include "input/stroke_log.h"
@@ -33,7 +34,12 @@ class StrokeRecorder {
   // fsync now (the recorder also does this itself on pen-up and actions).
   Status sync();
   // Syncs and closes; further records fail. The destructor closes too (ignoring errors).
+  // A log closed this way has no end marker: crash recovery treats it as unfinished.
   Status close();
+  // Clean end of the session: appends the end marker {"t":t,"type":"end"} (t >= the last
+  // event's time), syncs and closes. Only a finished journal is skipped by crash recovery.
+  Status finish(double t);
+  Status finish() { return finish(last_t_); }
 
   const std::string& path() const { return path_; }
   bool is_open() const { return fd_ >= 0; }

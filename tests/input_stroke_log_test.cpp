@@ -1,6 +1,8 @@
 // Stroke-log format: writer -> reader round trip, every malformed-line case, unknown events,
 // truncated last lines, and the recorder's append/fsync/refusal behaviour.
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -383,6 +385,76 @@ TEST(StrokeRecorder, SessionRecoversAfterACrashMidLine) {
   expect_same(log, *back);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("truncated last line"), std::string::npos);
+}
+
+TEST(StrokeLogIo, EndMarkerRoundTripsAndMustBeLast) {
+  StrokeLog log = every_event_log();
+  EXPECT_FALSE(log.end_t);
+  const double last = log.events.back().t;
+  log.end_t = last + 0.5;
+  auto text = to_jsonl(log);
+  ASSERT_TRUE(text) << text.message();
+  const std::string end_line = *format_end(last + 0.5) + "\n";
+  ASSERT_GE(text->size(), end_line.size());
+  EXPECT_EQ(text->substr(text->size() - end_line.size()), end_line);
+  EXPECT_NE(end_line.find("\"type\":\"end\""), std::string::npos);
+  auto back = parse_stroke_log(*text, "ended.jsonl");
+  ASSERT_TRUE(back) << back.message();
+  expect_same(log, *back);
+  ASSERT_TRUE(back->end_t);
+  EXPECT_EQ(*back->end_t, last + 0.5);
+  EXPECT_EQ(*to_jsonl(*back), *text);  // write -> read -> write stays a fixed point
+
+  // Nothing may follow the marker (blank lines may); its time may not go back.
+  auto after = parse_stroke_log(*text + "\n{\"t\":1e9,\"type\":\"undo\"}\n", "after.jsonl");
+  ASSERT_FALSE(after);
+  EXPECT_NE(after.message().find("after the session's end marker"), std::string::npos) << after.message();
+  EXPECT_EQ(after.message().rfind("after.jsonl:", 0), 0u);
+  EXPECT_TRUE(parse_stroke_log(*text + "\n\n", "blank.jsonl"));
+  log.end_t = last - 1.0;
+  EXPECT_FALSE(to_jsonl(log));
+  std::string back_in_time = *text;
+  back_in_time.resize(back_in_time.size() - end_line.size());
+  back_in_time += "{\"t\":0,\"type\":\"end\"}\n";
+  auto bt = parse_stroke_log(back_in_time, "bt.jsonl");
+  ASSERT_FALSE(bt);
+  EXPECT_NE(bt.message().find("goes back"), std::string::npos) << bt.message();
+  EXPECT_FALSE(format_end(-1.0));
+  EXPECT_FALSE(format_end(std::nan("")));
+}
+
+TEST(StrokeRecorder, FinishWritesTheEndMarkerAndLocksWhileOpen) {
+  const fs::path p = temp_dir() / "finished.jsonl";
+  fs::remove(p);
+  const StrokeLog log = every_event_log();
+  auto lock_free = [&] {
+    const int fd = ::open(p.c_str(), O_RDONLY | O_CLOEXEC);
+    EXPECT_GE(fd, 0);
+    const bool ok = ::flock(fd, LOCK_SH | LOCK_NB) == 0;
+    ::close(fd);
+    return ok;
+  };
+  {
+    auto rec = StrokeRecorder::open(p.string(), log.header);
+    ASSERT_TRUE(rec) << rec.message();
+    for (const TimedEvent& e : log.events) ASSERT_TRUE(rec->record(e.t, e.event));
+    EXPECT_FALSE(lock_free());  // a live session holds its journal's lock
+    auto open_log = read_stroke_log(p.string());
+    ASSERT_TRUE(open_log);
+    EXPECT_FALSE(open_log->end_t);  // unfinished while recording
+    EXPECT_FALSE(rec->finish(log.events.back().t - 1.0));  // before the last event: refused
+    EXPECT_TRUE(rec->is_open());
+    EXPECT_TRUE(rec->finish());
+    EXPECT_FALSE(rec->is_open());
+    EXPECT_FALSE(rec->record(log.events.back().t, Undo{}));
+    EXPECT_FALSE(rec->finish());
+  }
+  EXPECT_TRUE(lock_free());
+  auto back = read_stroke_log(p.string());
+  ASSERT_TRUE(back) << back.message();
+  expect_same(log, *back);
+  ASSERT_TRUE(back->end_t);
+  EXPECT_EQ(*back->end_t, log.events.back().t);
 }
 
 }  // namespace
