@@ -1,6 +1,9 @@
 #include "app/session_driver.h"
 
 #include <chrono>
+
+#include "modeling/sculpt_cut.h"
+#include "modeling/stroke_classify.h"
 #include <type_traits>
 #include <variant>
 
@@ -77,8 +80,13 @@ void SessionDriver::on_stroke(const Stroke& stroke) {
     else changed();
     return;
   }
+  if (input_.mode == "cut" || input_.mode == "tunnel" || input_.mode == "smooth" || input_.mode == "sculpt") {
+    sculpt_stroke(t, pts);
+    return;
+  }
+  pending_cut_.clear();
   if (input_.mode != "sketch") {
-    report(t, 0, "stroke in '" + input_.mode + "' mode ignored: replay drives the sketching tool");
+    report(t, 0, "stroke in '" + input_.mode + "' mode ignored: modes are sketch, sculpt, cut, tunnel and smooth");
     return;
   }
   const auto plane = input_.current_plane();
@@ -92,6 +100,53 @@ void SessionDriver::on_stroke(const Stroke& stroke) {
     return;
   }
   latencies_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  changed();
+}
+
+// === Sculpting strokes (thesis 3.2.2). Explicit modes name the operation; in "sculpt" mode the
+// stroke is recognised (modeling/stroke_classify.h): closed -> tunnel, scratch-out -> smoothing,
+// open across the silhouette -> cut. A cut takes two strokes: the cutting stroke, then a stroke
+// whose first point marks the side to remove.
+void SessionDriver::sculpt_stroke(double t, const std::vector<Vec2>& pts) {
+  SculptOp op;
+  op.camera = input_.camera;
+  if (!pending_cut_.empty()) {
+    op.kind = SculptOp::Kind::kCut;
+    op.stroke = std::move(pending_cut_);
+    pending_cut_.clear();
+    op.side = pts.front();
+  } else if (input_.mode == "cut") {
+    pending_cut_ = pts;
+    return;
+  } else if (input_.mode == "tunnel" || input_.mode == "smooth") {
+    op.kind = input_.mode == "tunnel" ? SculptOp::Kind::kTunnel : SculptOp::Kind::kSmooth;
+    op.stroke = pts;
+  } else {
+    const SilhouetteTest silhouette(session_.state().model, input_.camera);
+    auto c = classify_stroke(pts, [&](const Vec2& p) { return silhouette.covers(p); });
+    if (!c) {
+      report(t, 0, "stroke refused: " + c.message());
+      return;
+    }
+    switch (c->cls) {
+      case StrokeClass::kClosed: op.kind = SculptOp::Kind::kTunnel; break;
+      case StrokeClass::kScratchOut: op.kind = SculptOp::Kind::kSmooth; break;
+      case StrokeClass::kOpenCutting:
+        pending_cut_ = pts;
+        return;
+      case StrokeClass::kOpenDeformation:
+        report(t, 0, "deformation stroke: the deformation tool runs from `planesketch deform` (not yet in the session); model unchanged");
+        return;
+      case StrokeClass::kOpenMiss:
+        report(t, 0, "the stroke misses the model; model unchanged");
+        return;
+    }
+    op.stroke = pts;
+  }
+  if (auto st = session_.sculpt(op); !st) {
+    report(t, 0, "stroke refused: " + st.message());
+    return;
+  }
   changed();
 }
 

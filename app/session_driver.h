@@ -42,6 +42,7 @@ class SessionDriver : public EventSink {
 
  private:
   void report(double t, int line, const std::string& text);
+  void sculpt_stroke(double t, const std::vector<Vec2>& pts);
   void changed();
 
   SketchSession session_;
@@ -49,6 +50,7 @@ class SessionDriver : public EventSink {
   Camera initial_camera_;
   std::vector<DriverMessage> messages_;
   std::vector<double> latencies_;
+  std::vector<Vec2> pending_cut_;  // a cutting stroke waiting for the stroke that marks the side
 };
 
 }  // namespace ps::app

@@ -14,43 +14,6 @@
 namespace ps {
 namespace {
 
-// The model's triangles projected to the window (those with a corner behind the eye are
-// dropped: the camera must see the whole model, checked by the callers through the depths).
-struct Silhouette {
-  std::vector<std::array<Vec2, 3>> tris;
-  Vec2 lo = Vec2::Constant(1e300), hi = Vec2::Constant(-1e300);
-
-  Silhouette(const TriMesh& m, const Camera& cam) {
-    std::vector<std::optional<Vec2>> px(m.vertices.size());
-    for (std::size_t v = 0; v < m.vertices.size(); ++v)
-      if (auto p = cam.project(m.vertices[v])) {
-        px[v] = Vec2(p->x(), p->y());
-        lo = lo.cwiseMin(*px[v]);
-        hi = hi.cwiseMax(*px[v]);
-      }
-    for (const auto& f : m.faces) {
-      const auto& a = px[static_cast<std::size_t>(f[0])];
-      const auto& b = px[static_cast<std::size_t>(f[1])];
-      const auto& c = px[static_cast<std::size_t>(f[2])];
-      if (a && b && c) tris.push_back({*a, *b, *c});
-    }
-  }
-
-  bool covers(const Vec2& p) const {
-    if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) return false;
-    for (const auto& t : tris) {
-      const double d0 = (t[1] - t[0]).x() * (p - t[0]).y() - (t[1] - t[0]).y() * (p - t[0]).x();
-      const double d1 = (t[2] - t[1]).x() * (p - t[1]).y() - (t[2] - t[1]).y() * (p - t[1]).x();
-      const double d2 = (t[0] - t[2]).x() * (p - t[2]).y() - (t[0] - t[2]).y() * (p - t[2]).x();
-      if ((d0 >= 0 && d1 >= 0 && d2 >= 0) || (d0 <= 0 && d1 <= 0 && d2 <= 0)) {
-        if (d0 == 0 && d1 == 0 && d2 == 0) continue;  // a triangle seen edge-on
-        return true;
-      }
-    }
-    return false;
-  }
-};
-
 Status check_stroke(const std::vector<Vec2>& s, std::size_t min_points, const char* what) {
   if (s.size() < min_points)
     return Status::error(std::string(what) + " has " + std::to_string(s.size()) + " point(s); it needs at least " +
@@ -135,8 +98,37 @@ Result<TriMesh> subtract_swept(const TriMesh& model, const std::vector<Vec2>& po
 
 }  // namespace
 
+// === Silhouette
+SilhouetteTest::SilhouetteTest(const TriMesh& m, const Camera& cam) {
+  std::vector<std::optional<Vec2>> px(m.vertices.size());
+  for (std::size_t v = 0; v < m.vertices.size(); ++v)
+    if (auto p = cam.project(m.vertices[v])) {
+      px[v] = Vec2(p->x(), p->y());
+      lo_ = lo_.cwiseMin(*px[v]);
+      hi_ = hi_.cwiseMax(*px[v]);
+    }
+  for (const auto& f : m.faces) {
+    const auto& a = px[static_cast<std::size_t>(f[0])];
+    const auto& b = px[static_cast<std::size_t>(f[1])];
+    const auto& c = px[static_cast<std::size_t>(f[2])];
+    if (a && b && c) tris_.push_back({*a, *b, *c});
+  }
+}
+
+bool SilhouetteTest::covers(const Vec2& p) const {
+  if ((p.array() < lo_.array()).any() || (p.array() > hi_.array()).any()) return false;
+  for (const auto& t : tris_) {
+    const double d0 = (t[1] - t[0]).x() * (p - t[0]).y() - (t[1] - t[0]).y() * (p - t[0]).x();
+    const double d1 = (t[2] - t[1]).x() * (p - t[1]).y() - (t[2] - t[1]).y() * (p - t[1]).x();
+    const double d2 = (t[0] - t[2]).x() * (p - t[2]).y() - (t[0] - t[2]).y() * (p - t[2]).x();
+    if (d0 == 0 && d1 == 0 && d2 == 0) continue;  // a triangle seen edge-on
+    if ((d0 >= 0 && d1 >= 0 && d2 >= 0) || (d0 <= 0 && d1 <= 0 && d2 <= 0)) return true;
+  }
+  return false;
+}
+
 bool on_silhouette(const TriMesh& model, const Camera& camera, const Vec2& px) {
-  return Silhouette(model, camera).covers(px);
+  return SilhouetteTest(model, camera).covers(px);
 }
 
 // === Cutting
@@ -146,7 +138,7 @@ Result<TriMesh> cut_by_stroke(const TriMesh& model, const std::vector<Vec2>& str
   if (!remove_side_px.allFinite()) return Result<TriMesh>::error("the side mark is not finite");
   auto depths = sweep_depths(model, cam);
   if (!depths) return depths.status();
-  const Silhouette sil(model, cam);
+  const SilhouetteTest sil(model, cam);
   if (sil.covers(stroke_px.front()) || sil.covers(stroke_px.back()))
     return Result<TriMesh>::error("the cutting stroke must start and end off the model (it has to cross it)");
   if (std::none_of(stroke_px.begin(), stroke_px.end(), [&](const Vec2& p) { return sil.covers(p); }))
@@ -156,7 +148,7 @@ Result<TriMesh> cut_by_stroke(const TriMesh& model, const std::vector<Vec2>& str
                                   std::to_string(x->y()) + ")");
 
   // Frame: the box of the silhouette, the stroke and the side mark, grown by a tenth of its size.
-  Vec2 lo = sil.lo.cwiseMin(remove_side_px), hi = sil.hi.cwiseMax(remove_side_px);
+  Vec2 lo = sil.lo().cwiseMin(remove_side_px), hi = sil.hi().cwiseMax(remove_side_px);
   for (const auto& p : stroke_px) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
@@ -204,7 +196,7 @@ Result<TriMesh> tunnel_by_stroke(const TriMesh& model, const std::vector<Vec2>& 
   if (Status s = check_stroke(stroke_px, 3, "the tunnel stroke"); !s) return s;
   auto depths = sweep_depths(model, cam);
   if (!depths) return depths.status();
-  const Silhouette sil(model, cam);
+  const SilhouetteTest sil(model, cam);
   for (std::size_t i = 0; i < stroke_px.size(); ++i)
     if (!sil.covers(stroke_px[i]))
       return Result<TriMesh>::error("the tunnel stroke leaves the model at point " + std::to_string(i) +

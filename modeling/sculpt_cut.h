@@ -7,6 +7,7 @@
 // Strokes are in window pixels (x right, y down), under `camera`. "On the model" means inside the
 // model's silhouette: the point's viewing ray meets the model (tested against the projected
 // triangles). Every refusal names what is wrong and leaves the model untouched (inputs are values).
+#include <array>
 #include <vector>
 
 #include "modeling/camera.h"
@@ -29,7 +30,24 @@ Result<TriMesh> cut_by_stroke(const TriMesh& model, const std::vector<Vec2>& str
 Result<TriMesh> tunnel_by_stroke(const TriMesh& model, const std::vector<Vec2>& closed_stroke_px,
                                  const Camera& camera);
 
-// Is the window point inside the model's silhouette under `camera`?
+// Is a window point inside the model's silhouette under `camera`? The model's triangles are
+// projected once at construction (those with a corner behind the eye are left out); each query
+// tests the projected triangles (a box test first). For many queries on one view (stroke
+// recognition probes every few pixels) build one and reuse it.
+class SilhouetteTest {
+ public:
+  SilhouetteTest(const TriMesh& model, const Camera& camera);
+  bool covers(const Vec2& px) const;
+  // Box of the projected vertices (empty when nothing is in front of the eye: lo > hi).
+  Vec2 lo() const { return lo_; }
+  Vec2 hi() const { return hi_; }
+
+ private:
+  std::vector<std::array<Vec2, 3>> tris_;
+  Vec2 lo_ = Vec2::Constant(1e300), hi_ = Vec2::Constant(-1e300);
+};
+
+// One-shot form of SilhouetteTest.
 bool on_silhouette(const TriMesh& model, const Camera& camera, const Vec2& px);
 
 }  // namespace ps

@@ -6,6 +6,8 @@
 
 #include "modeling/curve_sewing.h"
 #include "modeling/mesh_improve.h"
+#include "modeling/sculpt_cut.h"
+#include "modeling/sculpt_smooth.h"
 
 namespace ps {
 namespace {
@@ -46,7 +48,38 @@ void compact_planes(SectionSet& set) {
 
 }  // namespace
 
+const char* sculpt_kind_name(SculptOp::Kind kind) {
+  switch (kind) {
+    case SculptOp::Kind::kCut: return "cut";
+    case SculptOp::Kind::kTunnel: return "tunnel";
+    case SculptOp::Kind::kSmooth: return "smooth";
+  }
+  return "?";
+}
+
+Result<TriMesh> apply_sculpt(const TriMesh& model, const SculptOp& op) {
+  if (model.faces.empty()) return Result<TriMesh>::error("there is no model to sculpt: sketch cross sections first");
+  switch (op.kind) {
+    case SculptOp::Kind::kCut: return cut_by_stroke(model, op.stroke, op.side, op.camera);
+    case SculptOp::Kind::kTunnel: return tunnel_by_stroke(model, op.stroke, op.camera);
+    case SculptOp::Kind::kSmooth: return smooth_by_scratch(model, op.stroke, op.camera);
+  }
+  return Result<TriMesh>::error("unknown sculpting operation");
+}
+
 SketchSession::SketchSession(SessionParams params) : params_(std::move(params)) {}
+
+Status SketchSession::sculpt(const SculptOp& op) {
+  auto out = apply_sculpt(state_.model, op);
+  if (!out) return Status::error(std::string(sculpt_kind_name(op.kind)) + ": " + out.message());
+  SessionState next = state_;
+  next.ops.push_back(op);
+  next.model = std::move(*out);
+  undo_.push_back(std::move(state_));
+  redo_.clear();
+  state_ = std::move(next);
+  return Status::ok();
+}
 
 Status SketchSession::add_window_stroke(const std::vector<Vec2>& window_points,
                                         const Camera& camera, const Plane& plane) {
@@ -148,6 +181,8 @@ Status SketchSession::commit(SessionState next) {
   next.hints.clear();
   ReconstructReport report;
   if (next.sections.curves.empty()) {
+    if (!next.ops.empty())
+      return Status::error("the model has been sculpted; deleting its last section would lose that work (undo the sculpting first)");
     next.sewn = next.sections;
     next.model = TriMesh{};
   } else {
@@ -169,6 +204,14 @@ Status SketchSession::commit(SessionState next) {
         report.warnings.push_back("the model has " + std::to_string(mesh->faces.size()) +
                                   " faces: shown without refinement and smoothing");
       }
+    }
+    // Sculpting done on the previous model is applied again to the new reconstruction.
+    for (std::size_t k = 0; k < next.ops.size(); ++k) {
+      auto sculpted = apply_sculpt(*mesh, next.ops[k]);
+      if (!sculpted)
+        return Status::error("the new sections would undo sculpting operation " + std::to_string(k + 1) + " (" +
+                             sculpt_kind_name(next.ops[k].kind) + "): " + sculpted.message());
+      *mesh = std::move(*sculpted);
     }
     next.sewn = std::move(*sewn);
     next.model = std::move(*mesh);

@@ -32,10 +32,28 @@ struct SessionParams {
   double lambda = 0.5;  // deformation balance, kept for the deformation tool
 };
 
+// A sculpting operation by stroke (thesis 3.2.2; modeling/sculpt_cut.h, sculpt_smooth.h), kept
+// with the camera it was drawn under so it can be applied again.
+struct SculptOp {
+  enum class Kind { kCut, kTunnel, kSmooth };
+  Kind kind = Kind::kCut;
+  std::vector<Vec2> stroke;  // window pixels
+  Vec2 side = Vec2::Zero();  // kCut: a window point on the side to remove
+  Camera camera;
+};
+const char* sculpt_kind_name(SculptOp::Kind kind);
+
+// The operation applied to a model (refusals name the reason; the model is a value).
+Result<TriMesh> apply_sculpt(const TriMesh& model, const SculptOp& op);
+
 struct SessionState {
   SectionSet sections;  // the user's curves (before sewing)
   SectionSet sewn;      // the curves the model interpolates (after sewing)
-  TriMesh model;        // reconstruction of `sewn` (empty when there are no sections)
+  // Sculpting operations, applied in order to the reconstruction of `sewn`. Editing the
+  // sections rebuilds the reconstruction and applies them again; a section edit that makes one
+  // of them fail is refused (the sculpted model is never silently lost).
+  std::vector<SculptOp> ops;
+  TriMesh model;        // reconstruction of `sewn`, then `ops` (empty when there are no sections)
   std::vector<std::string> hints;  // e.g. "the model has 2 separate parts"
 };
 
@@ -54,6 +72,8 @@ class SketchSession {
   // A closed curve given in 3D on `plane` (points are projected onto it).
   Status add_section(const Plane& plane, const std::vector<Vec3>& points);
   Status delete_section(int index);
+  // Applies a sculpting operation to the current model (undoable like every other change).
+  Status sculpt(const SculptOp& op);
   // The section whose window-space polyline passes nearest to `window_point`, within
   // `radius_px`; -1 if none.
   int pick_section(const Vec2& window_point, const Camera& camera, double radius_px) const;
