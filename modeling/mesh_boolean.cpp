@@ -13,7 +13,6 @@
 #include <string>
 
 #include "modeling/face_intersections.h"
-#include "modeling/mesh_queries.h"
 #include "modeling/mesh_topology.h"
 
 namespace ps {
@@ -126,7 +125,12 @@ Status check_solid(const TriMesh& m, const char* which) {
   if (!t.closed || !t.manifold() || !t.consistently_oriented)
     return Status::error(std::string(which) + " is not a closed, oriented 2-manifold (" + t.problem + ")");
   if (!(t.signed_volume > 0)) return Status::error(std::string(which) + " is inside out (negative volume)");
-  if (does_self_intersect(m)) return Status::error(std::string(which) + " intersects itself");
+  // The solid is a valid halfedge mesh (checked above), so the face-pair test needs no soup
+  // repair first (what does_self_intersect does for arbitrary soups); same predicates.
+  std::vector<int> all(m.faces.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  if (!intersecting_face_pairs(m.vertices, m.faces, all).empty())
+    return Status::error(std::string(which) + " intersects itself");
   return Status::ok();
 }
 
