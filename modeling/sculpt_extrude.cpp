@@ -194,6 +194,38 @@ void add_ring_faces(TriMesh& m, int ring_a, int ring_b, int n) {
   }
 }
 
+// Whether smoothing (which moved only the vertices with fixed[v] == 0 of a mesh free of
+// self-intersections, connectivity unchanged) made it intersect itself. Exact, and local: every
+// moved face lies in the box of the moved faces, so only the faces meeting that box can take
+// part in a new intersection; they are tested as one soup (shared vertices keep shared indices,
+// so neighbours are still recognised as adjacent).
+bool smoothing_self_intersects(const TriMesh& m, const std::vector<std::uint8_t>& fixed) {
+  Box3 moved;
+  for (const auto& f : m.faces)
+    if (!fixed[static_cast<std::size_t>(f[0])] || !fixed[static_cast<std::size_t>(f[1])] ||
+        !fixed[static_cast<std::size_t>(f[2])])
+      for (int k : f) moved.extend(m.vertices[static_cast<std::size_t>(k)]);
+  if (moved.empty()) return false;
+  TriMesh local;
+  std::vector<int> index(m.vertices.size(), -1);
+  for (const auto& f : m.faces) {
+    Box3 b;
+    for (int k : f) b.extend(m.vertices[static_cast<std::size_t>(k)]);
+    if ((b.max.array() < moved.min.array()).any() || (b.min.array() > moved.max.array()).any()) continue;
+    Face g{};
+    for (int c = 0; c < 3; ++c) {
+      int& id = index[static_cast<std::size_t>(f[static_cast<std::size_t>(c)])];
+      if (id < 0) {
+        id = static_cast<int>(local.vertices.size());
+        local.vertices.push_back(m.vertices[static_cast<std::size_t>(f[static_cast<std::size_t>(c)])]);
+      }
+      g[static_cast<std::size_t>(c)] = id;
+    }
+    local.faces.push_back(g);
+  }
+  return does_self_intersect(local);
+}
+
 }  // namespace
 
 Result<ExtrudePlane> extrusion_reference_plane(const TriMesh& model, const std::vector<Vec2>& base_stroke_px,
@@ -391,7 +423,7 @@ Result<TriMesh> extrude_by_strokes(const TriMesh& model, const std::vector<Vec2>
         Smoother smoother(m, fixed, so);
         for (int k = 0; k < steps; ++k) smoother.step(m);
         TriMesh out = m.to_trimesh();
-        if (!does_self_intersect(out)) {
+        if (!smoothing_self_intersects(out, fixed)) {
           result = std::move(out);
           steps_done = steps;
           break;
