@@ -1,4 +1,4 @@
-// Sculpting benchmark (issue 6 point 9): cutting, tunnelling and scratch-out smoothing on a
+// Sculpting benchmark (issue 6 point 9): cutting, tunnelling, scratch-out smoothing and extrusion on a
 // 20k-triangle closed model (a UV sphere of 19 800 triangles), through the same functions the
 // session calls. Prints the median and minimum wall time and the CPU time of each operation.
 //
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "modeling/sculpt_cut.h"
+#include "modeling/sculpt_extrude.h"
 #include "modeling/sculpt_smooth.h"
 #include "tests/mesh_fixtures.h"
 
@@ -61,5 +62,37 @@ int main(int argc, char** argv) {
   run("cut (open stroke + side)", reps, [&] { return cut_by_stroke(model, line, Vec2(600, 240), cam).status(); });
   run("tunnel (closed stroke)", reps, [&] { return tunnel_by_stroke(model, circle, cam).status(); });
   run("smooth (scratch-out)", reps, [&] { return smooth_by_scratch(model, zigzag, cam).status(); });
+  // Extrusion: a closed stroke of 50 px radius off the view centre, a half-ellipse silhouette
+  // 0.5 high drawn on the reference plane under a camera facing it.
+  const std::vector<Vec2> base = [] {
+    std::vector<Vec2> s;
+    for (int i = 0; i < 48; ++i) s.push_back(Vec2(350, 220) + 50.0 * Vec2(std::cos(2 * M_PI * i / 48), std::sin(2 * M_PI * i / 48)));
+    return s;
+  }();
+  const auto plane = extrusion_reference_plane(model, base, cam);
+  if (!plane) {
+    std::printf("extrusion plane: refused: %s\n", plane.message().c_str());
+    return 1;
+  }
+  ExtrudeOptions eo;
+  Camera side = cam;
+  side.eye = plane->centre + 4.0 * plane->plane.normal;
+  side.target = plane->centre;
+  side.up = plane->normal_axis;
+  eo.silhouette_camera = side;
+  double lo = 1e300, hi = -1e300;
+  for (const auto& q : plane->base_curve) {
+    lo = std::min(lo, (q - plane->centre).dot(plane->across));
+    hi = std::max(hi, (q - plane->centre).dot(plane->across));
+  }
+  std::vector<Vec2> silhouette;
+  for (int i = 0; i <= 40; ++i) {
+    const double t = M_PI * i / 40;
+    const Vec3 p = plane->centre + (0.5 * (lo + hi) - 0.475 * (hi - lo) * std::cos(t)) * plane->across +
+                   0.5 * std::sin(t) * plane->normal_axis;
+    const auto w = side.project(p);
+    silhouette.emplace_back(w->x(), w->y());
+  }
+  run("extrude (loop + silhouette)", reps, [&] { return extrude_by_strokes(model, base, silhouette, cam, eo).status(); });
   return 0;
 }
