@@ -80,13 +80,15 @@ void SessionDriver::on_stroke(const Stroke& stroke) {
     else changed();
     return;
   }
-  if (input_.mode == "cut" || input_.mode == "tunnel" || input_.mode == "smooth" || input_.mode == "sculpt") {
+  if (input_.mode == "cut" || input_.mode == "tunnel" || input_.mode == "smooth" || input_.mode == "extrude" ||
+      input_.mode == "sculpt") {
     sculpt_stroke(t, pts);
     return;
   }
   pending_cut_.clear();
+  pending_base_.clear();
   if (input_.mode != "sketch") {
-    report(t, 0, "stroke in '" + input_.mode + "' mode ignored: modes are sketch, sculpt, cut, tunnel and smooth");
+    report(t, 0, "stroke in '" + input_.mode + "' mode ignored: modes are sketch, sculpt, cut, tunnel, smooth and extrude");
     return;
   }
   const auto plane = input_.current_plane();
@@ -104,13 +106,27 @@ void SessionDriver::on_stroke(const Stroke& stroke) {
 }
 
 // === Sculpting strokes (thesis 3.2.2). Explicit modes name the operation; in "sculpt" mode the
-// stroke is recognised (modeling/stroke_classify.h): closed -> tunnel, scratch-out -> smoothing,
-// open across the silhouette -> cut. A cut takes two strokes: the cutting stroke, then a stroke
-// whose first point marks the side to remove.
+// stroke is recognised (modeling/stroke_classify.h): closed -> extrusion, scratch-out ->
+// smoothing, open across the silhouette -> cut. A cut takes two strokes: the cutting stroke, then
+// a stroke whose first point marks the side to remove. An extrusion takes two: the closed base
+// stroke on the surface, then the silhouette on the automatic reference plane (possibly after
+// the view was turned: each stroke keeps the camera it was drawn under). Tunnels have their own
+// mode.
 void SessionDriver::sculpt_stroke(double t, const std::vector<Vec2>& pts) {
   SculptOp op;
   op.camera = input_.camera;
-  if (!pending_cut_.empty()) {
+  if (!pending_base_.empty()) {
+    op.kind = SculptOp::Kind::kExtrude;
+    op.stroke = std::move(pending_base_);
+    op.camera = pending_base_camera_;
+    pending_base_.clear();
+    op.silhouette = pts;
+    op.silhouette_camera = input_.camera;
+  } else if (input_.mode == "extrude") {
+    pending_base_ = pts;
+    pending_base_camera_ = input_.camera;
+    return;
+  } else if (!pending_cut_.empty()) {
     op.kind = SculptOp::Kind::kCut;
     op.stroke = std::move(pending_cut_);
     pending_cut_.clear();
@@ -129,7 +145,10 @@ void SessionDriver::sculpt_stroke(double t, const std::vector<Vec2>& pts) {
       return;
     }
     switch (c->cls) {
-      case StrokeClass::kClosed: op.kind = SculptOp::Kind::kTunnel; break;
+      case StrokeClass::kClosed:
+        pending_base_ = pts;
+        pending_base_camera_ = input_.camera;
+        return;
       case StrokeClass::kScratchOut: op.kind = SculptOp::Kind::kSmooth; break;
       case StrokeClass::kOpenCutting:
         pending_cut_ = pts;

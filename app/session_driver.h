@@ -51,6 +51,8 @@ class SessionDriver : public EventSink {
   std::vector<DriverMessage> messages_;
   std::vector<double> latencies_;
   std::vector<Vec2> pending_cut_;  // a cutting stroke waiting for the stroke that marks the side
+  std::vector<Vec2> pending_base_;  // an extrusion's base stroke waiting for its silhouette
+  Camera pending_base_camera_;
 };
 
 }  // namespace ps::app

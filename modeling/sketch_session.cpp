@@ -7,6 +7,7 @@
 #include "modeling/curve_sewing.h"
 #include "modeling/mesh_improve.h"
 #include "modeling/sculpt_cut.h"
+#include "modeling/sculpt_extrude.h"
 #include "modeling/sculpt_smooth.h"
 
 namespace ps {
@@ -53,6 +54,7 @@ const char* sculpt_kind_name(SculptOp::Kind kind) {
     case SculptOp::Kind::kCut: return "cut";
     case SculptOp::Kind::kTunnel: return "tunnel";
     case SculptOp::Kind::kSmooth: return "smooth";
+    case SculptOp::Kind::kExtrude: return "extrude";
   }
   return "?";
 }
@@ -63,6 +65,11 @@ Result<TriMesh> apply_sculpt(const TriMesh& model, const SculptOp& op) {
     case SculptOp::Kind::kCut: return cut_by_stroke(model, op.stroke, op.side, op.camera);
     case SculptOp::Kind::kTunnel: return tunnel_by_stroke(model, op.stroke, op.camera);
     case SculptOp::Kind::kSmooth: return smooth_by_scratch(model, op.stroke, op.camera);
+    case SculptOp::Kind::kExtrude: {
+      ExtrudeOptions eo;
+      eo.silhouette_camera = op.silhouette_camera;
+      return extrude_by_strokes(model, op.stroke, op.silhouette, op.camera, eo);
+    }
   }
   return Result<TriMesh>::error("unknown sculpting operation");
 }

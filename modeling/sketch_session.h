@@ -35,11 +35,14 @@ struct SessionParams {
 // A sculpting operation by stroke (thesis 3.2.2; modeling/sculpt_cut.h, sculpt_smooth.h), kept
 // with the camera it was drawn under so it can be applied again.
 struct SculptOp {
-  enum class Kind { kCut, kTunnel, kSmooth };
+  enum class Kind { kCut, kTunnel, kSmooth, kExtrude };
   Kind kind = Kind::kCut;
-  std::vector<Vec2> stroke;  // window pixels
+  std::vector<Vec2> stroke;  // window pixels (kExtrude: the closed base stroke on the surface)
   Vec2 side = Vec2::Zero();  // kCut: a window point on the side to remove
   Camera camera;
+  // kExtrude: the silhouette stroke on the automatic reference plane, and its camera.
+  std::vector<Vec2> silhouette;
+  Camera silhouette_camera;
 };
 const char* sculpt_kind_name(SculptOp::Kind kind);
 

@@ -3,10 +3,12 @@
 // the session exactly as it was.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "modeling/mesh_queries.h"
 #include "modeling/mesh_topology.h"
+#include "modeling/sculpt_extrude.h"
 #include "modeling/sketch_session.h"
 
 namespace ps {
@@ -117,6 +119,49 @@ TEST(SculptSession, RefusedOperationsChangeNothing) {
   EXPECT_EQ(s.state().model.vertices, before.model.vertices);
   EXPECT_TRUE(s.state().ops.empty());
   EXPECT_TRUE(s.can_undo());  // the three sections' history is intact
+}
+
+TEST(SculptSession, ExtrusionAddsAValidBumpAndUndoes) {
+  SketchSession s = blob();
+  const TriMesh before = s.state().model;
+  SculptOp op;
+  op.kind = SculptOp::Kind::kExtrude;
+  op.camera = front_camera();
+  for (int i = 0; i < 48; ++i)
+    op.stroke.push_back(Vec2(320, 240) + 18.0 * Vec2(std::cos(2 * M_PI * i / 48), std::sin(2 * M_PI * i / 48)));
+  auto plane = extrusion_reference_plane(before, op.stroke, op.camera);
+  ASSERT_TRUE(plane) << plane.message();
+  // The silhouette: half an ellipse on the reference plane from one side of the base to the
+  // other, drawn under a camera facing the plane.
+  Camera side;
+  side.eye = plane->centre + 5.0 * plane->plane.normal;
+  side.target = plane->centre;
+  side.up = plane->normal_axis;
+  side.width = 640;
+  side.height = 480;
+  double lo = 1e300, hi = -1e300;
+  for (const auto& q : plane->base_curve) {
+    lo = std::min(lo, (q - plane->centre).dot(plane->across));
+    hi = std::max(hi, (q - plane->centre).dot(plane->across));
+  }
+  for (int i = 0; i <= 40; ++i) {
+    const double a = M_PI * i / 40;
+    const Vec3 q = plane->centre + (0.5 * (lo + hi) - 0.47 * (hi - lo) * std::cos(a)) * plane->across +
+                   0.4 * std::sin(a) * plane->normal_axis;
+    const auto w = side.project(q);
+    ASSERT_TRUE(w);
+    op.silhouette.emplace_back(w->x(), w->y());
+  }
+  op.silhouette_camera = side;
+  const Status st = s.sculpt(op);
+  ASSERT_TRUE(st) << st.message();
+  const MeshGuarantees g = check_guarantees(s.state().model);
+  EXPECT_TRUE(g.valid()) << g.problem();
+  EXPECT_EQ(g.topology.components, 1);
+  EXPECT_EQ(g.topology.genus, mesh_topology(before).genus);
+  EXPECT_GT(g.topology.signed_volume, signed_volume(before));
+  ASSERT_TRUE(s.undo());
+  EXPECT_EQ(s.state().model.vertices, before.vertices);
 }
 
 TEST(SculptSession, DeletingTheLastSectionOfASculptedModelIsRefused) {
