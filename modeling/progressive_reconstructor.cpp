@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <thread>
 #include <tuple>
 
 #include "modeling/cylinder_builder.h"
@@ -138,6 +139,33 @@ void curve_flags(const TriMesh& m, const SectionSet& s, double tol, std::vector<
     }
     if (along) edges.push_back(e);
   }
+}
+
+// === Parallel loop over zones
+// TBB's parallel_for, except in ThreadSanitizer builds: Debian's libtbb is not instrumented, so
+// its internal hand-offs are invisible to TSan and every task looks racy. There the same loop
+// runs on std::threads taking indices from an atomic counter (join is a synchronisation TSan
+// sees), so the reports that remain are about our task bodies and the state they share.
+template <class Body>
+void parallel_over(std::size_t n, int threads, const Body& body) {
+#if defined(__SANITIZE_THREAD__)
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t k = std::min<std::size_t>(n, threads > 0 ? static_cast<std::size_t>(threads) : hw);
+  std::atomic<std::size_t> next{0};
+  std::vector<std::thread> pool;
+  for (std::size_t t = 0; t < k; ++t)
+    pool.emplace_back([&] {
+      for (std::size_t i = next++; i < n; i = next++) body(i);
+    });
+  for (auto& th : pool) th.join();
+#else
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) body(i);
+    });
+  });
+#endif
 }
 
 // === Scale normalisation helpers (powers of two: exact)
@@ -305,33 +333,28 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
   }
   std::vector<std::string> errors(todo.size());
   std::atomic<int> done{0};
-  tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size()), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-        const std::size_t z = uz(todo[i]);
-        // An intermediate union can be non-manifold (two primitives touching along an edge)
-        // even when the whole union is not; retry in other fixed orders (deterministic).
-        auto u = union_solids(prims[z].solids);
-        const std::size_t count = prims[z].solids.size();
-        // At most two retries (one rotation, then reversed): a refusal must stay quick.
-        for (std::size_t rot = 1; !u && rot <= 2 && count > 2; ++rot) {
-          std::vector<TriMesh> order(prims[z].solids);
-          if (rot == 1)
-            std::rotate(order.begin(), order.begin() + 1, order.end());
-          else
-            std::reverse(order.begin(), order.end());
-          u = union_solids(order);
-        }
-        if (u) {
-          solids[z] = std::move(*u);
-          canonicalize(solids[z]);
-        }
-        else
-          errors[i] = "zone " + std::to_string(z) + ": " + u.message();
-        ++done;
-      }
-    });
+  parallel_over(todo.size(), options_.threads, [&](std::size_t i) {
+    const std::size_t z = uz(todo[i]);
+    // An intermediate union can be non-manifold (two primitives touching along an edge)
+    // even when the whole union is not; retry in other fixed orders (deterministic).
+    auto u = union_solids(prims[z].solids);
+    const std::size_t count = prims[z].solids.size();
+    // At most two retries (one rotation, then reversed): a refusal must stay quick.
+    for (std::size_t rot = 1; !u && rot <= 2 && count > 2; ++rot) {
+      std::vector<TriMesh> order(prims[z].solids);
+      if (rot == 1)
+        std::rotate(order.begin(), order.begin() + 1, order.end());
+      else
+        std::reverse(order.begin(), order.end());
+      u = union_solids(order);
+    }
+    if (u) {
+      solids[z] = std::move(*u);
+      canonicalize(solids[z]);
+    }
+    else
+      errors[i] = "zone " + std::to_string(z) + ": " + u.message();
+    ++done;
   });
   for (const auto& e : errors)
     if (!e.empty()) return Result<TriMesh>::error("reconstruction failed: " + e);
