@@ -9,19 +9,11 @@
 #include "modeling/mesh_boolean.h"
 #include "modeling/polygon_triangulate.h"
 #include "modeling/polyline_crossing.h"
+#include "modeling/stroke_preprocess.h"
 #include "modeling/view_extrusion.h"
 
 namespace ps {
 namespace {
-
-Status check_stroke(const std::vector<Vec2>& s, std::size_t min_points, const char* what) {
-  if (s.size() < min_points)
-    return Status::error(std::string(what) + " has " + std::to_string(s.size()) + " point(s); it needs at least " +
-                         std::to_string(min_points));
-  for (std::size_t i = 0; i < s.size(); ++i)
-    if (!s[i].allFinite()) return Status::error(std::string(what) + " point " + std::to_string(i) + " is not finite");
-  return Status::ok();
-}
 
 // Depths that enclose the whole model with a margin, or a refusal when the eye is inside its range.
 Result<DepthRange> sweep_depths(const TriMesh& model, const Camera& cam) {
@@ -134,7 +126,7 @@ bool on_silhouette(const TriMesh& model, const Camera& camera, const Vec2& px) {
 // === Cutting
 Result<TriMesh> cut_by_stroke(const TriMesh& model, const std::vector<Vec2>& stroke_px, const Vec2& remove_side_px,
                               const Camera& cam) {
-  if (Status s = check_stroke(stroke_px, 2, "the cutting stroke"); !s) return s;
+  if (Status s = check_window_points(stroke_px, 2, "the cutting stroke"); !s) return s;
   if (!remove_side_px.allFinite()) return Result<TriMesh>::error("the side mark is not finite");
   auto depths = sweep_depths(model, cam);
   if (!depths) return depths.status();
@@ -193,7 +185,7 @@ Result<TriMesh> cut_by_stroke(const TriMesh& model, const std::vector<Vec2>& str
 
 // === Tunnelling
 Result<TriMesh> tunnel_by_stroke(const TriMesh& model, const std::vector<Vec2>& stroke_px, const Camera& cam) {
-  if (Status s = check_stroke(stroke_px, 3, "the tunnel stroke"); !s) return s;
+  if (Status s = check_window_points(stroke_px, 3, "the tunnel stroke"); !s) return s;
   auto depths = sweep_depths(model, cam);
   if (!depths) return depths.status();
   const SilhouetteTest sil(model, cam);

@@ -17,6 +17,7 @@
 #include "modeling/mesh_topology.h"
 #include "modeling/polygon_triangulate.h"
 #include "modeling/polyline_crossing.h"
+#include "modeling/stroke_preprocess.h"
 
 namespace ps {
 namespace {
@@ -31,15 +32,6 @@ std::string px_str(const Vec2& p) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "(%.1f, %.1f)", p.x(), p.y());
   return buf;
-}
-
-Status check_points(const std::vector<Vec2>& s, std::size_t min_points, const char* what) {
-  if (s.size() < min_points)
-    return Status::error(std::string(what) + " has " + std::to_string(s.size()) + " point(s); it needs at least " +
-                         std::to_string(min_points));
-  for (std::size_t i = 0; i < s.size(); ++i)
-    if (!s[i].allFinite()) return Status::error(std::string(what) + " point " + std::to_string(i) + " is not finite");
-  return Status::ok();
 }
 
 // Consecutive duplicates removed (and, for a closed polyline, a last point equal to the first).
@@ -110,7 +102,7 @@ struct VecHash {
 
 Result<ExtrudePlane> make_plane(const MeshRayCaster& caster, const TriMesh& model, const std::vector<Vec2>& stroke_in,
                                 const Camera& cam, const ExtrudeOptions& o) {
-  if (Status s = check_points(stroke_in, 3, "the base stroke"); !s) return s;
+  if (Status s = check_window_points(stroke_in, 3, "the base stroke"); !s) return s;
   if (o.section_points < 8) return Result<ExtrudePlane>::error("extrusion needs at least 8 section points");
   const std::vector<Vec2> stroke = dedup(stroke_in, /*closed=*/true);
   if (stroke.size() < 3) return Result<ExtrudePlane>::error("the base stroke has fewer than 3 distinct points");
@@ -240,7 +232,7 @@ Result<TriMesh> extrude_by_strokes(const TriMesh& model, const std::vector<Vec2>
                                    const ExtrudeOptions& o, ExtrudeReport* report) {
   if (model.faces.empty()) return Result<TriMesh>::error("the model is empty");
   if (o.stations < 4) return Result<TriMesh>::error("extrusion needs at least 4 stations");
-  if (Status s = check_points(silhouette_px, 3, "the silhouette stroke"); !s) return s;
+  if (Status s = check_window_points(silhouette_px, 3, "the silhouette stroke"); !s) return s;
   const MeshRayCaster caster(model);
   auto planed = make_plane(caster, model, base_stroke_px, camera, o);
   if (!planed) return planed.status();

@@ -307,4 +307,13 @@ Result<LiftedStroke> prepare_plane_stroke(const std::vector<Vec2>& window_points
   return out;
 }
 
+Status check_window_points(const std::vector<Vec2>& s, std::size_t min_points, const char* what) {
+  if (s.size() < min_points)
+    return Status::error(std::string(what) + " has " + std::to_string(s.size()) + " point(s); it needs at least " +
+                         std::to_string(min_points));
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (!s[i].allFinite()) return Status::error(std::string(what) + " point " + std::to_string(i) + " is not finite");
+  return Status::ok();
+}
+
 }  // namespace ps

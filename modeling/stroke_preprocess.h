@@ -92,6 +92,10 @@ Result<LiftedStroke> prepare_plane_stroke(const std::vector<Vec2>& window_points
 // === Polyline helpers (2D and 3D)
 // Drop points closer than min_spacing to the last kept point; the last input point is kept
 // (replacing the last kept point when it is closer than min_spacing / 2 to it).
+// A stroke (window pixels) given to an operation: at least `min_points` points, all finite.
+// `what` names it in the message ("the cutting stroke has 1 point(s); it needs at least 2").
+Status check_window_points(const std::vector<Vec2>& points, std::size_t min_points, const char* what);
+
 std::vector<Vec2> filter_close_points(const std::vector<Vec2>& pts, double min_spacing);
 std::vector<Vec3> filter_close_points(const std::vector<Vec3>& pts, double min_spacing);
 
