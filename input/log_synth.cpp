@@ -24,18 +24,8 @@ namespace {
 
 constexpr double kKnotMs = 70.0;  // hand jitter and pressure wander at ~14 Hz
 
-double smoothstep(double x) {
-  x = std::clamp(x, 0.0, 1.0);
-  return x * x * (3.0 - 2.0 * x);
-}
-
 // Smooth noise in [-1, 1] from knots spaced kKnotMs apart.
-double noise(const std::vector<double>& k, double t_ms) {
-  const double x = std::max(0.0, t_ms / kKnotMs);
-  const std::size_t i = std::min(static_cast<std::size_t>(x), k.size() - 2);
-  const double f = smoothstep(x - static_cast<double>(i));
-  return k[i] * (1.0 - f) + k[i + 1] * f;
-}
+double noise(const std::vector<double>& k, double t_ms) { return knot_noise(k, t_ms, kKnotMs); }
 
 bool inside_viewport(const Camera& cam, const Vec3& p, double margin) {
   const auto q = cam.project(p);
@@ -255,6 +245,18 @@ Result<SynthResult> synthesize_log(const Camera& camera, const std::vector<Plane
     }
   }
   return res;
+}
+
+double smoothstep(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x * x * (3.0 - 2.0 * x);
+}
+
+double knot_noise(const std::vector<double>& k, double t_ms, double knot_ms) {
+  const double x = std::max(0.0, t_ms / knot_ms);
+  const std::size_t i = std::min(static_cast<std::size_t>(x), k.size() - 2);
+  const double f = smoothstep(x - static_cast<double>(i));
+  return k[i] * (1.0 - f) + k[i + 1] * f;
 }
 
 }  // namespace ps

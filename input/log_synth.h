@@ -76,4 +76,10 @@ class SynthRandom {
   std::mt19937 gen_;
 };
 
+// Hand-like smooth noise shared by the synthesizers: smoothstep x*x*(3-2x) of x clamped to
+// [0, 1], and the value at time t_ms of knots spaced `knot_ms` apart, blended by smoothstep
+// (knots in [-1, 1] give noise in [-1, 1]; at least two knots).
+double smoothstep(double x);
+double knot_noise(const std::vector<double>& knots, double t_ms, double knot_ms);
+
 }  // namespace ps

@@ -23,17 +23,7 @@ Vec2 rot(const Vec2& v, double a) {
   return Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y());
 }
 
-double smoothstep(double x) {
-  x = std::clamp(x, 0.0, 1.0);
-  return x * x * (3.0 - 2.0 * x);
-}
-
-double noise(const std::vector<double>& k, double t_ms) {
-  const double x = std::max(0.0, t_ms / kKnotMs);
-  const std::size_t i = std::min(static_cast<std::size_t>(x), k.size() - 2);
-  const double f = smoothstep(x - static_cast<double>(i));
-  return k[i] * (1.0 - f) + k[i + 1] * f;
-}
+double noise(const std::vector<double>& k, double t_ms) { return knot_noise(k, t_ms, kKnotMs); }
 
 std::vector<double> arc_lengths(const Path& p) {
   std::vector<double> cum(p.size(), 0.0);
