@@ -51,6 +51,11 @@ void SessionDriver::on_action(const TimedEvent& e) {
           if (on_save) on_save(a.path);
         } else if constexpr (std::is_same_v<T, PenSample>) {
           on_pen_sample(a);
+        } else if constexpr (std::is_same_v<T, SetToolMode>) {
+          // A two-stroke operation (cut, extrusion) left half-way is dropped with the old mode.
+          pending_cut_.clear();
+          pending_base_.clear();
+          if (auto st = input_.apply(e.event); !st) report(e.t, e.line, st.message());
         } else {
           if (auto st = input_.apply(e.event); !st) report(e.t, e.line, st.message());
         }
