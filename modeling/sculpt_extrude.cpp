@@ -28,12 +28,6 @@ std::string fmt(double x) {
   return buf;
 }
 
-std::string px_str(const Vec2& p) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "(%.1f, %.1f)", p.x(), p.y());
-  return buf;
-}
-
 // Consecutive duplicates removed (and, for a closed polyline, a last point equal to the first).
 template <class V>
 std::vector<V> dedup(const std::vector<V>& in, bool closed) {
@@ -118,7 +112,7 @@ Result<ExtrudePlane> make_plane(const MeshRayCaster& caster, const TriMesh& mode
     return Result<ExtrudePlane>::error("the base stroke is not closed: its ends are " + fmt(gap) +
                                        " px apart (at most " + fmt(max_gap) + " px); draw a loop on the model");
   if (auto x = first_self_crossing(stroke))
-    return Result<ExtrudePlane>::error("the base stroke crosses itself at " + px_str(*x));
+    return Result<ExtrudePlane>::error("the base stroke crosses itself at " + format_window_point(*x));
   if (std::abs(signed_area_2d(stroke)) < 8.0)
     return Result<ExtrudePlane>::error("the base stroke encloses no area");
 
@@ -131,7 +125,7 @@ Result<ExtrudePlane> make_plane(const MeshRayCaster& caster, const TriMesh& mode
       const Vec2 p = a + (b - a) * (static_cast<double>(k) / n);
       const auto h = caster.first_hit(cam.ray(p.x(), p.y()));
       if (!h)
-        return Result<ExtrudePlane>::error("the base stroke misses the model at " + px_str(p) +
+        return Result<ExtrudePlane>::error("the base stroke misses the model at " + format_window_point(p) +
                                            "; draw the loop on the surface");
       if (loop.empty() || (h->point - loop.back()).norm() > 0) loop.push_back(h->point);
     }

@@ -17,11 +17,6 @@ std::string fmt(const char* format, double a) {
   std::snprintf(buf, sizeof buf, format, a);
   return buf;
 }
-std::string fmt_point(const Vec2& p) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "(%.1f, %.1f)", p.x(), p.y());
-  return buf;
-}
 
 // === Generic polyline helpers (any fixed-size Eigen vector)
 template <class V>
@@ -271,7 +266,7 @@ Result<std::vector<Vec3>> lift_stroke(const std::vector<Vec2>& window_points, co
   out.reserve(window_points.size());
   for (std::size_t i = 0; i < window_points.size(); ++i) {
     const Vec2& w = window_points[i];
-    auto where = [&] { return "stroke point " + std::to_string(i) + " at " + fmt_point(w); };
+    auto where = [&] { return "stroke point " + std::to_string(i) + " at " + format_window_point(w); };
     if (!w.allFinite()) return R::error("stroke point " + std::to_string(i) + " is not finite");
     const Ray r = camera.ray(w.x(), w.y());
     const double denom = plane.normal.dot(r.direction);
@@ -297,7 +292,7 @@ Result<LiftedStroke> prepare_plane_stroke(const std::vector<Vec2>& window_points
   if (!pre) return pre.status();
   if (pre->closed)
     if (auto x = first_self_crossing(pre->points))
-      return Result<LiftedStroke>::error("stroke crosses itself at " + fmt_point(*x));
+      return Result<LiftedStroke>::error("stroke crosses itself at " + format_window_point(*x));
   auto lifted = lift_stroke(pre->points, camera, plane);
   if (!lifted) return lifted.status();
   LiftedStroke out;
@@ -314,6 +309,12 @@ Status check_window_points(const std::vector<Vec2>& s, std::size_t min_points, c
   for (std::size_t i = 0; i < s.size(); ++i)
     if (!s[i].allFinite()) return Status::error(std::string(what) + " point " + std::to_string(i) + " is not finite");
   return Status::ok();
+}
+
+std::string format_window_point(const Vec2& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.1f, %.1f)", p.x(), p.y());
+  return buf;
 }
 
 }  // namespace ps

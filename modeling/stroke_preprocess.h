@@ -17,6 +17,7 @@
 //
 // The polyline helpers below work on 2D and 3D points alike.
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "modeling/camera.h"
@@ -95,6 +96,8 @@ Result<LiftedStroke> prepare_plane_stroke(const std::vector<Vec2>& window_points
 // A stroke (window pixels) given to an operation: at least `min_points` points, all finite.
 // `what` names it in the message ("the cutting stroke has 1 point(s); it needs at least 2").
 Status check_window_points(const std::vector<Vec2>& points, std::size_t min_points, const char* what);
+// A window point for messages: "(x, y)" with one decimal (pixels).
+std::string format_window_point(const Vec2& p);
 
 std::vector<Vec2> filter_close_points(const std::vector<Vec2>& pts, double min_spacing);
 std::vector<Vec3> filter_close_points(const std::vector<Vec3>& pts, double min_spacing);
