@@ -79,6 +79,106 @@ Result<TriMesh> union_solids(const std::vector<TriMesh>& solids) {
   return to_tri_mesh(acc);
 }
 
+// === Snapped solids (chapter 6): vertices made exact on their planes.
+namespace {
+
+using FT = K::FT;
+
+// The point nearest to p on the planes listed in `tags`: x = p + N^T (N N^T)^-1 (d - N p),
+// solved by Cramer's rule in exact arithmetic (k <= 3 planes). Hand-written: CGAL projects
+// onto one plane or line, not onto the intersection of up to three planes given by double
+// coefficients.
+K::Point_3 snap_point(const Vec3& p, const std::array<int, 3>& tags, const std::vector<Plane>& planes) {
+  std::array<std::array<FT, 3>, 3> n;
+  std::array<FT, 3> r;
+  int k = 0;
+  const FT px(p.x()), py(p.y()), pz(p.z());
+  for (int t : tags) {
+    if (t < 0 || static_cast<std::size_t>(t) >= planes.size()) continue;
+    const Plane& pl = planes[static_cast<std::size_t>(t)];
+    n[static_cast<std::size_t>(k)] = {FT(pl.normal.x()), FT(pl.normal.y()), FT(pl.normal.z())};
+    const auto& a = n[static_cast<std::size_t>(k)];
+    r[static_cast<std::size_t>(k)] = FT(pl.offset) - (a[0] * px + a[1] * py + a[2] * pz);
+    ++k;
+  }
+  if (k == 0) return K::Point_3(p.x(), p.y(), p.z());
+  auto dot = [&](int i, int j) {
+    const auto& a = n[static_cast<std::size_t>(i)];
+    const auto& b = n[static_cast<std::size_t>(j)];
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  };
+  std::array<FT, 3> lambda{FT(0), FT(0), FT(0)};
+  if (k == 1) {
+    lambda[0] = r[0] / dot(0, 0);
+  } else if (k == 2) {
+    const FT a = dot(0, 0), b = dot(0, 1), c = dot(1, 1);
+    const FT det = a * c - b * b;
+    if (CGAL::is_zero(det)) {
+      lambda[0] = r[0] / a;
+    } else {
+      lambda[0] = (r[0] * c - b * r[1]) / det;
+      lambda[1] = (a * r[1] - b * r[0]) / det;
+    }
+  } else {
+    std::array<std::array<FT, 3>, 3> m;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = dot(i, j);
+    auto det3 = [](const std::array<std::array<FT, 3>, 3>& q) {
+      return q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) - q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
+             q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
+    };
+    const FT det = det3(m);
+    if (CGAL::is_zero(det)) {
+      lambda[0] = r[0] / dot(0, 0);
+    } else {
+      for (std::size_t c = 0; c < 3; ++c) {
+        auto mc = m;
+        for (std::size_t i = 0; i < 3; ++i) mc[i][c] = r[i];
+        lambda[c] = det3(mc) / det;
+      }
+    }
+  }
+  FT x = px, y = py, z = pz;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(k); ++i) {
+    x += lambda[i] * n[i][0];
+    y += lambda[i] * n[i][1];
+    z += lambda[i] * n[i][2];
+  }
+  return K::Point_3(x, y, z);
+}
+
+SurfaceMesh to_surface_mesh(const SnappedSolid& s, const std::vector<Plane>& planes) {
+  SurfaceMesh sm;
+  std::vector<SurfaceMesh::Vertex_index> vi;
+  vi.reserve(s.mesh.vertices.size());
+  for (std::size_t v = 0; v < s.mesh.vertices.size(); ++v) {
+    const std::array<int, 3> tags = v < s.tags.size() ? s.tags[v] : std::array<int, 3>{-1, -1, -1};
+    vi.push_back(sm.add_vertex(snap_point(s.mesh.vertices[v], tags, planes)));
+  }
+  for (const auto& f : s.mesh.faces)
+    sm.add_face(vi[static_cast<std::size_t>(f[0])], vi[static_cast<std::size_t>(f[1])],
+                vi[static_cast<std::size_t>(f[2])]);
+  return sm;
+}
+
+}  // namespace
+
+Result<TriMesh> union_snapped_solids(const std::vector<SnappedSolid>& solids, const std::vector<Plane>& planes) {
+  if (solids.empty()) return TriMesh{};
+  SurfaceMesh acc = to_surface_mesh(solids.front(), planes);
+  for (std::size_t i = 1; i < solids.size(); ++i) {
+    SurfaceMesh next = to_surface_mesh(solids[i], planes);
+    bool ok = false;
+    try {
+      ok = PMP::corefine_and_compute_union(acc, next, acc);
+    } catch (const std::exception& e) {
+      return Result<TriMesh>::error(std::string("union of frusta failed: ") + e.what());
+    }
+    if (!ok) return Result<TriMesh>::error("union of frusta would not be 2-manifold (frustum " + std::to_string(i) + ")");
+  }
+  return to_tri_mesh(acc);
+}
+
 // === Booleans of whole solids (sculpting)
 namespace {
 

@@ -17,6 +17,8 @@
 #include <tuple>
 
 #include "modeling/cylinder_builder.h"
+#include "modeling/frustum_builder.h"
+#include "modeling/polyhedral_partition.h"
 #include "modeling/mesh_topology.h"
 #include "modeling/reconstruction_limits.h"
 #include "modeling/section_validate.h"
@@ -195,6 +197,75 @@ ValidatedSections scaled_sections(const ValidatedSections& in, int k) {
   return out;
 }
 
+// Zone counts of either partition (grid or convex zones) into the report.
+template <class Part>
+void count_zones(const Part& part, ReconstructReport& rep) {
+  rep.zones = static_cast<int>(part.zones.size());
+  rep.empty_zones = part.count(ZoneType::kEmpty);
+  rep.end_zones = part.count(ZoneType::kEnd);
+  rep.body_zones = part.count(ZoneType::kBody);
+}
+
+// === Chapter 6: convex zones, frusta, unions of snapped frusta, stitching. The stage timings
+// and zone counts go into `rep`; the stitched (unimproved) mesh is returned.
+Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& box, ReconstructReport& rep,
+                                       const std::function<void(const char*, double)>& progress,
+                                       int threads = 0) {
+  auto t = Clock::now();
+  auto part = partition_polyhedral(vs, box);
+  if (!part) return part.status();
+  count_zones(*part, rep);
+  rep.timings.partition_ms = ms_since(t);
+  progress("partition", 1.0);
+
+  t = Clock::now();
+  FrustumReport fr;
+  auto frusta = build_frusta(*part, FrustumOptions{}, &fr);
+  if (!frusta) return frusta.status();
+  rep.primitives = fr.frusta;
+  rep.timings.primitives_ms = ms_since(t);
+  progress("primitives", 1.0);
+
+  t = Clock::now();
+  std::vector<int> todo;
+  for (std::size_t z = 0; z < frusta->size(); ++z)
+    if (!(*frusta)[z].solids.empty()) todo.push_back(static_cast<int>(z));
+  std::vector<TriMesh> solids(frusta->size());
+  std::vector<std::string> errors(todo.size());
+  parallel_over(todo.size(), threads, [&](std::size_t i) {
+    const std::size_t z = uz(todo[i]);
+    // An intermediate union can be non-manifold (two frusta touching along an edge or at a
+    // point) when the whole union is not: retry from each other starting frustum, then reversed
+    // (fixed orders: deterministic).
+    const auto& fz = (*frusta)[z].solids;
+    auto u = union_snapped_solids(fz, part->planes);
+    for (std::size_t rot = 1; !u && rot < fz.size() + 1 && fz.size() > 1; ++rot) {
+      std::vector<SnappedSolid> order(fz);
+      if (rot < fz.size())
+        std::rotate(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(rot), order.end());
+      else
+        std::reverse(order.begin(), order.end());
+      u = union_snapped_solids(order, part->planes);
+    }
+    if (u) {
+      solids[z] = std::move(*u);
+      canonicalize(solids[z]);
+    } else {
+      errors[i] = "zone " + std::to_string(z) + ": " + u.message();
+    }
+  });
+  for (const auto& e : errors)
+    if (!e.empty()) return Result<TriMesh>::error("reconstruction failed: " + e);
+  rep.zones_recomputed = static_cast<int>(todo.size());
+  rep.timings.union_ms = ms_since(t);
+  progress("union", 1.0);
+
+  t = Clock::now();
+  TriMesh mesh = stitch_polyhedral_zones(*part, solids, 1e-10 * box.diagonal());
+  rep.timings.stitch_ms = ms_since(t);
+  return mesh;
+}
+
 }  // namespace
 
 void set_improve_hook(ImproveHook hook) { g_improve_hook = hook; }
@@ -266,12 +337,15 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
   auto valid = validate_sections(canonical);
   if (!valid) return Result<TriMesh>::error("after sewing crossing points (rule 4): " + valid.message());
   const SectionSet& s = valid->sections;
-  for (std::size_t i = 0; i < s.planes.size(); ++i)
-    if (s.planes[i].axis() < 0)
-      return Result<TriMesh>::error("plane with normal (" + std::to_string(s.planes[i].normal.x()) + ", " +
-                                    std::to_string(s.planes[i].normal.y()) + ", " +
-                                    std::to_string(s.planes[i].normal.z()) +
-                                    ") is not an axis plane; only orthogonal sections are reconstructed");
+  // Planes of any orientation go through the convex-zone pipeline of chapter 6; axis planes
+  // only through the grid of chapter 4 (faster, and cached per zone).
+  bool orthogonal = true;
+  {
+    std::vector<char> used(s.planes.size(), 0);
+    for (const auto& c : s.curves) used[uz(c.plane)] = 1;
+    for (std::size_t i = 0; i < s.planes.size(); ++i)
+      if (used[i] && s.planes[i].axis() < 0) orthogonal = false;
+  }
   rep.timings.validate_ms = ms_since(t);
   progress("validate", 1.0);
 
@@ -298,12 +372,19 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
   const ValidatedSections scaled = scaled_sections(*valid, k);
   const Box3 user_box = box;
   box = scaled_box(box, k);
+  const double diag = box.diagonal();
+  const double tol = 1e-10 * diag;
+  std::multimap<std::uint64_t, CacheEntry> cache;
+  TriMesh mesh;
+  if (!orthogonal) {
+    auto built = reconstruct_polyhedral(scaled, box, rep, progress, options_.threads);
+    t = Clock::now();
+    if (!built) return built.status();
+    mesh = std::move(*built);
+  } else {
   auto part = partition_zones(scaled, box);
   if (!part) return part.status();
-  rep.zones = static_cast<int>(part->zones.size());
-  rep.empty_zones = part->count(ZoneType::kEmpty);
-  rep.end_zones = part->count(ZoneType::kEnd);
-  rep.body_zones = part->count(ZoneType::kBody);
+  count_zones(*part, rep);
   rep.timings.partition_ms = ms_since(t);
   progress("partition", 1.0);
 
@@ -364,9 +445,10 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
 
   // === Stitch
   t = Clock::now();
-  const double diag = box.diagonal();
-  const double tol = 1e-10 * diag;
-  TriMesh mesh = stitch_zones(*part, solids, tol);
+  mesh = stitch_zones(*part, solids, tol);
+  for (std::size_t z = 0; z < prims.size(); ++z)
+    if (!prims[z].solids.empty()) cache.emplace(keys[z], CacheEntry{prims[z].solids, solids[z]});
+  }
   const MeshTopology topo = mesh_topology(mesh);
   if (!topo.closed || !topo.manifold())
     return Result<TriMesh>::error("reconstruction failed: the stitched surface is not a closed 2-manifold (" +
@@ -378,7 +460,7 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
     rep.warnings.push_back("result has " + std::to_string(topo.components) +
                            " components; a new section near the separate parts may join them");
   curve_flags(mesh, scaled.sections, 1e-9 * diag, rep.curve_vertex, rep.curve_edges);
-  rep.timings.stitch_ms = ms_since(t);
+  rep.timings.stitch_ms += ms_since(t);
   progress("stitch", 1.0);
 
   // === Improvement (4.5.1), through the hook.
@@ -411,9 +493,6 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
     for (int c = 0; c < 3; ++c) v[c] = std::ldexp(v[c], -k);
 
   // === Commit state
-  std::multimap<std::uint64_t, CacheEntry> cache;
-  for (std::size_t z = 0; z < prims.size(); ++z)
-    if (!prims[z].solids.empty()) cache.emplace(keys[z], CacheEntry{prims[z].solids, solids[z]});
   cache_ = std::move(cache);
   box_ = user_box;
   box_fixed_ = true;

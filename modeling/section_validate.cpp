@@ -156,8 +156,13 @@ Result<ValidatedSections> validate_sections(const SectionSet& in) {
     const PlaneFrame fr = plane_frame(pl);
     double worst = 0.0;
     for (auto& p : c.points) {
-      worst = std::max(worst, std::abs(pl.signed_distance(p)));
-      p = fr.to_3d(fr.to_2d(pl.project(p)));
+      const double off = std::abs(pl.signed_distance(p));
+      worst = std::max(worst, off);
+      // On an axis plane the projection is exact. On other planes a double point cannot lie
+      // exactly on the plane anyway (the union snaps it exactly, zone_union.h); a point already
+      // within rounding of it is kept bit for bit, so a crossing point shared by two curves
+      // (curve sewing) stays shared.
+      if (fr.axis >= 0 || off > 1e-14 * diag) p = fr.to_3d(fr.to_2d(pl.project(p)));
     }
     if (worst > kOffPlaneError * diag)
       return Result<ValidatedSections>::error(name + ": lies off its plane " + std::to_string(c.plane) + " by " +
@@ -309,6 +314,43 @@ struct Edit {
   Vec3 point;
 };
 
+// The line where two non-parallel planes meet: origin (the point of the line nearest to the
+// coordinate origin) and unit direction.
+struct Line3 {
+  Vec3 origin, dir;
+  Vec3 at(double s) const { return origin + s * dir; }
+};
+Line3 plane_line(const Plane& a, const Plane& b) {
+  const Vec3 d = a.normal.cross(b.normal);
+  const double n2 = d.squaredNorm();
+  const Vec3 o = (a.offset * b.normal.cross(d) + b.offset * d.cross(a.normal)) / n2;
+  return Line3{o, d / std::sqrt(n2)};
+}
+
+// Crossings of curve `ci` with plane `other`, parametrised along `line` (any orientation).
+void crossings_general(const SectionSet& s, int ci, const Plane& other, const Line3& line, double snap,
+                       std::vector<Crossing>& out) {
+  const auto& pts = s.curves[uz(ci)].points;
+  const std::size_t n = pts.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& p = pts[i];
+    const Vec3& q = pts[(i + 1) % n];
+    const double dp = other.signed_distance(p), dq = other.signed_distance(q);
+    if ((dp < 0) == (dq < 0)) continue;
+    const double t = dp / (dp - dq);
+    const double len = (q - p).norm();
+    Crossing c{ci, static_cast<int>(i), t, (p + t * (q - p) - line.origin).dot(line.dir)};
+    if (t * len <= snap) {
+      c.free = (p - line.origin).dot(line.dir);
+      c.at_vertex = true;
+    } else if ((1.0 - t) * len <= snap) {
+      c.free = (q - line.origin).dot(line.dir);
+      c.at_vertex = true;
+    }
+    out.push_back(c);
+  }
+}
+
 }  // namespace
 
 int sew_crossings(SectionSet& s, double tolerance, std::vector<std::string>* warnings) {
@@ -323,13 +365,31 @@ int sew_crossings(SectionSet& s, double tolerance, std::vector<std::string>* war
       const Plane& pa = s.planes[pa_i];
       const Plane& pb = s.planes[pb_i];
       const int k = pa.axis(), j = pb.axis();
-      if (k < 0 || j < 0 || k == j) continue;
-      const int f = 3 - k - j;
+      if (k >= 0 && k == j) continue;
+      // Axis pairs keep exact coordinates (the line is x_k = a, x_j = b); other pairs meet along
+      // a general line (chapter 6), parallel pairs never.
+      const bool axes = k >= 0 && j >= 0;
+      if (!axes && pa.normal.cross(pb.normal).norm() < 1e-9) continue;
+      const int f = axes ? 3 - k - j : -1;
+      const Line3 line = axes ? Line3{} : plane_line(pa, pb);
       std::vector<Crossing> ca, cb;
       for (std::size_t c = 0; c < s.curves.size(); ++c) {
-        if (uz(s.curves[c].plane) == pa_i) crossings_of(s, static_cast<int>(c), j, pb.offset, f, snap, ca);
-        if (uz(s.curves[c].plane) == pb_i) crossings_of(s, static_cast<int>(c), k, pa.offset, f, snap, cb);
+        if (axes) {
+          if (uz(s.curves[c].plane) == pa_i) crossings_of(s, static_cast<int>(c), j, pb.offset, f, snap, ca);
+          if (uz(s.curves[c].plane) == pb_i) crossings_of(s, static_cast<int>(c), k, pa.offset, f, snap, cb);
+        } else {
+          if (uz(s.curves[c].plane) == pa_i) crossings_general(s, static_cast<int>(c), pb, line, snap, ca);
+          if (uz(s.curves[c].plane) == pb_i) crossings_general(s, static_cast<int>(c), pa, line, snap, cb);
+        }
       }
+      auto on_line = [&](double free) {
+        if (!axes) return line.at(free);
+        Vec3 p;
+        p[k] = pa.offset;
+        p[j] = pb.offset;
+        p[f] = free;
+        return p;
+      };
       if (ca.empty() && cb.empty()) continue;
       auto nearest = [](const std::vector<Crossing>& list, double v) {
         int best = -1;
@@ -344,12 +404,9 @@ int sew_crossings(SectionSet& s, double tolerance, std::vector<std::string>* war
         Crossing& y = cb[uz(yi)];
         if (std::abs(y.free - x.free) > tolerance) continue;
         x.used = y.used = true;
-        Vec3 p;
-        p[k] = pa.offset;
-        p[j] = pb.offset;
         // An existing vertex on the line stays where it is (it is an input point the surface
         // must interpolate); otherwise the two crossings meet half way.
-        p[f] = x.at_vertex ? x.free : y.at_vertex ? y.free : 0.5 * (x.free + y.free);
+        const Vec3 p = on_line(x.at_vertex ? x.free : y.at_vertex ? y.free : 0.5 * (x.free + y.free));
         edits[uz(x.curve)].push_back(Edit{x.segment, x.t, p});
         edits[uz(y.curve)].push_back(Edit{y.segment, y.t, p});
         ++shared;
@@ -358,10 +415,7 @@ int sew_crossings(SectionSet& s, double tolerance, std::vector<std::string>* war
         for (const auto* list : {&ca, &cb})
           for (const auto& x : *list)
             if (!x.used) {
-              Vec3 at;
-              at[k] = pa.offset;
-              at[j] = pb.offset;
-              at[f] = x.free;
+              const Vec3 at = on_line(x.free);
               warnings->push_back("a curve crosses the line at " + fmt(at) + " where planes (" +
                                   std::to_string(pa.normal.x()) + ", " + std::to_string(pa.normal.y()) + ", " +
                                   std::to_string(pa.normal.z()) + ") . p = " + std::to_string(pa.offset) + " and (" +

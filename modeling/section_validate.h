@@ -9,7 +9,8 @@
 //   * Coincident planes are merged into one (warning); planes holding no curve are kept.
 //   * Points are projected onto their plane (silently below 1e-6 of the bounding-box diagonal,
 //     with a warning up to 1e-3, an error beyond); on an axis plane the axis coordinate is then
-//     exactly the offset.
+//     exactly the offset. On other planes a point within 1e-14 of the diagonal is kept as is
+//     (doubles cannot do better; the union makes it exact).
 //   * Curve indices are unchanged (curve i of the output is curve i of the input).
 //   * Nesting (rule 2): depth[i] = number of curves on the same plane that contain curve i.
 //     Even depth: outer boundary of a region; odd depth: a hole. A point of the plane is inside
@@ -57,7 +58,9 @@ struct ValidatedSections {
 // touching itself, two curves of one plane crossing or touching (rule 3).
 Result<ValidatedSections> validate_sections(const SectionSet& sections);
 
-// Curve sewing for stroke rule 4 (orthogonal planes): where a curve on plane x_k = a crosses the
+// Curve sewing for stroke rule 4. Any two non-parallel planes meet along a line; for axis
+// planes it is described here with exact coordinates, for other pairs the shared point is the
+// point of the general line (within rounding of both planes). Where a curve on plane x_k = a crosses the
 // line {x_k = a, x_j = b} and a curve on plane x_j = b crosses it nearby (closer than
 // `tolerance`, absolute), both get one shared vertex at the mean of the two crossing points
 // (an existing vertex within 1e-6 of the diagonal of the crossing is moved, otherwise a vertex is

@@ -4,30 +4,19 @@
 #include "modeling/zone_partition.h"
 
 #include <CGAL/Boolean_set_operations_2.h>
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
-#include <CGAL/Polygon_2.h>
-#include <CGAL/Polygon_with_holes_2.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iterator>
 
+#include "modeling/exact_polygon_2.h"
+
 namespace ps {
 namespace {
 
-using EK = CGAL::Exact_predicates_exact_constructions_kernel;
-using EPoint = EK::Point_2;
-using EPolygon = CGAL::Polygon_2<EK>;
-using EPwh = CGAL::Polygon_with_holes_2<EK>;
+using namespace exact2;
 
 std::size_t uz(int i) { return static_cast<std::size_t>(i); }
-
-EPolygon to_exact(const std::vector<Vec2>& loop, bool ccw) {
-  EPolygon p;
-  for (const auto& q : loop) p.push_back(EPoint(q.x(), q.y()));
-  if (p.is_counterclockwise_oriented() != ccw) p.reverse_orientation();
-  return p;
-}
 
 std::vector<Vec2> to_double(const EPolygon& p) {
   std::vector<Vec2> out;

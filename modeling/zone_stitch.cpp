@@ -3,6 +3,8 @@
 // on a soup, which no CGAL function does on a soup with tolerance).
 #include "modeling/zone_stitch.h"
 
+#include "modeling/section_validate.h"
+
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -24,9 +26,9 @@ std::size_t uz(int i) { return static_cast<std::size_t>(i); }
 using Tri2 = std::array<Vec2, 3>;
 
 struct FaceBucket {
-  int axis = 0;
-  double coord = 0.0;
-  std::vector<Tri2> below, above;  // caps of the zone below (normal +e_axis) and above (-e_axis)
+  PlaneFrame frame;                // of the face's plane (an axis frame in the grid case)
+  std::vector<Tri2> below, above;  // caps of the zone below (normal +frame.normal) and above
+  std::map<std::pair<double, double>, Vec3> lift;  // 2D image -> the 3D point it came from
 };
 
 double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
@@ -40,12 +42,11 @@ bool in_triangle(const Tri2& t, const Vec2& p) {
   return a < 0 && b < 0 && c < 0;
 }
 
-Vec3 lift(int k, double coord, const Vec2& q) {
-  Vec3 p;
-  p[k] = coord;
-  p[(k + 1) % 3] = q.x();
-  p[(k + 2) % 3] = q.y();
-  return p;
+// A CDT point back in 3D: the cap point it came from when there is one (exact for axis frames
+// anyway; for other planes it keeps the union's rounded points bit for bit), else the frame's.
+Vec3 lift(const FaceBucket& b, const Vec2& q) {
+  const auto it = b.lift.find({q.x(), q.y()});
+  return it != b.lift.end() ? it->second : b.frame.to_3d(q);
 }
 
 std::vector<std::array<double, 6>> canonical(const std::vector<Tri2>& tris) {
@@ -91,8 +92,9 @@ int cap_xor(const FaceBucket& b, std::vector<std::array<Vec3, 3>>& out) {
         break;
       }
     if (in_below == in_above) continue;
-    // CDT faces are counter-clockwise in (u, v), i.e. normal +e_axis: right for the zone below.
-    std::array<Vec3, 3> tri{lift(b.axis, b.coord, t[0]), lift(b.axis, b.coord, t[1]), lift(b.axis, b.coord, t[2])};
+    // CDT faces are counter-clockwise in (u, v), i.e. normal +frame.normal: right for the zone
+    // below.
+    std::array<Vec3, 3> tri{lift(b, t[0]), lift(b, t[1]), lift(b, t[2])};
     if (in_above) std::swap(tri[1], tri[2]);
     out.push_back(tri);
     ++kept;
@@ -316,6 +318,10 @@ void canonicalize(TriMesh& m) {
   m.vertices = std::move(vertices);
 }
 
+namespace {
+TriMesh weld_soup(const std::vector<std::array<Vec3, 3>>& soup, double tol, StitchReport& rep);
+}  // namespace
+
 TriMesh stitch_zones(const Partition& part, const std::vector<TriMesh>& solids, double tol, StitchReport* report) {
   StitchReport rep;
   std::map<std::array<int, 4>, FaceBucket> buckets;  // (axis, layer, cell_u, cell_v)
@@ -342,8 +348,7 @@ TriMesh stitch_zones(const Partition& part, const std::vector<TriMesh>& solids, 
       const int a = face / 2, side = face % 2;
       const int layer = z.cell[uz(a)] + side;
       FaceBucket& b = buckets[{a, layer, z.cell[uz((a + 1) % 3)], z.cell[uz((a + 2) % 3)]}];
-      b.axis = a;
-      b.coord = part.grid.coords[uz(a)][uz(layer)];
+      b.frame = plane_frame(Plane{Vec3::Unit(a), part.grid.coords[uz(a)][uz(layer)]});
       Tri2 t2{Vec2(t[0][(a + 1) % 3], t[0][(a + 2) % 3]), Vec2(t[1][(a + 1) % 3], t[1][(a + 2) % 3]),
               Vec2(t[2][(a + 1) % 3], t[2][(a + 2) % 3])};
       (side == 1 ? b.below : b.above).push_back(t2);
@@ -351,7 +356,55 @@ TriMesh stitch_zones(const Partition& part, const std::vector<TriMesh>& solids, 
     }
   }
   for (const auto& [key, b] : buckets) rep.cap_triangles_kept += cap_xor(b, soup);
+  TriMesh m = weld_soup(soup, tol, rep);
+  if (report) *report = rep;
+  return m;
+}
 
+TriMesh stitch_polyhedral_zones(const PolyPartition& part, const std::vector<TriMesh>& solids, double tol,
+                                StitchReport* report) {
+  StitchReport rep;
+  std::map<int, FaceBucket> buckets;  // by shared face
+  std::vector<std::array<Vec3, 3>> soup;
+  for (std::size_t zi = 0; zi < part.zones.size() && zi < solids.size(); ++zi) {
+    const PolyZone& z = part.zones[zi];
+    const TriMesh& s = solids[zi];
+    for (const auto& f : s.faces) {
+      const std::array<Vec3, 3> t{s.vertices[uz(f[0])], s.vertices[uz(f[1])], s.vertices[uz(f[2])]};
+      int face = -1;
+      for (std::size_t k = 0; k < z.faces.size() && face < 0; ++k) {
+        const Plane& pl = part.planes[uz(z.faces[k].plane)];
+        if (std::abs(pl.signed_distance(t[0])) <= tol && std::abs(pl.signed_distance(t[1])) <= tol &&
+            std::abs(pl.signed_distance(t[2])) <= tol)
+          face = static_cast<int>(k);
+      }
+      if (face < 0 || z.faces[uz(face)].on_box()) {
+        soup.push_back(t);
+        continue;
+      }
+      const PolyFace& pf = z.faces[uz(face)];
+      FaceBucket& b = buckets[pf.shared];
+      const Plane& pl = part.planes[uz(pf.plane)];
+      b.frame = plane_frame(pl);
+      Tri2 t2;
+      for (std::size_t i = 0; i < 3; ++i) {
+        t2[i] = b.frame.to_2d(t[i]);
+        b.lift.emplace(std::make_pair(t2[i].x(), t2[i].y()), t[i]);
+      }
+      // The zone on the plane's negative side has outward normal +normal: "below".
+      (pf.normal.dot(pl.normal) > 0 ? b.below : b.above).push_back(t2);
+      ++rep.face_triangles_removed;
+    }
+  }
+  for (const auto& [key, b] : buckets) rep.cap_triangles_kept += cap_xor(b, soup);
+  TriMesh m = weld_soup(soup, tol, rep);
+  if (report) *report = rep;
+  return m;
+}
+
+namespace {
+
+TriMesh weld_soup(const std::vector<std::array<Vec3, 3>>& soup, double tol, StitchReport& rep) {
   TriMesh m;
   m.vertices.reserve(soup.size() * 3);
   for (const auto& t : soup) {
@@ -362,8 +415,8 @@ TriMesh stitch_zones(const Partition& part, const std::vector<TriMesh>& solids, 
   m = weld_vertices(m, tol);
   rep.t_junctions_split = split_t_junctions(m, tol);
   canonicalize(m);
-  if (report) *report = rep;
   return m;
 }
 
+}  // namespace
 }  // namespace ps

@@ -13,6 +13,7 @@
 
 #include "modeling/mesh.h"
 #include "modeling/status.h"
+#include "modeling/polyhedral_partition.h"
 #include "modeling/zone_partition.h"
 
 namespace ps {
@@ -27,6 +28,12 @@ struct StitchReport {
 // The result may still be open if the zones do not match; the caller checks.
 TriMesh stitch_zones(const Partition& partition, const std::vector<TriMesh>& zone_solids, double tol,
                      StitchReport* report = nullptr);
+
+// The same for the convex zones of planes of any orientation (thesis 6.3.3): cap material is
+// every triangle lying in a face plane of its zone, bucketed by shared face and compared in the
+// plane's 2D frame.
+TriMesh stitch_polyhedral_zones(const PolyPartition& partition, const std::vector<TriMesh>& zone_solids, double tol,
+                                StitchReport* report = nullptr);
 
 // Welds vertices closer than tol (first occurrence wins, deterministic), drops faces that became
 // degenerate and unreferenced vertices.

@@ -156,23 +156,6 @@ TEST(ReconValidate, NestingDepthAndRegions) {
   EXPECT_EQ(r->regions[3].outer, 4);
 }
 
-TEST(ReconValidate, ObliquePlanesAreRefusedByTheOrthogonalReconstruction) {
-  SectionSet s;
-  const Vec3 n = Vec3(1, 1, 0).normalized();
-  s.planes.push_back(Plane{n, 0.0});
-  Vec3 u, v;
-  s.planes[0].basis(u, v);
-  std::vector<Vec3> pts;
-  for (int i = 0; i < 12; ++i) pts.push_back(std::cos(i * M_PI / 6) * u + std::sin(i * M_PI / 6) * v);
-  s.curves.push_back(CrossSection{0, pts});
-  ASSERT_TRUE(validate_sections(s));
-  ReconstructOptions o;
-  o.improve = false;
-  auto m = reconstruct(s, o);
-  ASSERT_FALSE(m);
-  EXPECT_NE(m.message().find("not an axis plane"), std::string::npos) << m.message();
-}
-
 TEST(ReconValidate, SewingMakesOneSharedCrossingPoint) {
   // A square on z = 0 crossing the line {z = 0, x = 0.5} at y = 0 and y = 1; a square on x = 0.5
   // crossing the same line at y = 0.001 and y = 1.002.
