@@ -37,15 +37,7 @@ SketchSession blob() {
 // direction) faces the second view.
 constexpr double kLift = 0.3;
 
-Camera look(const Vec3& eye, const Vec3& target, const Vec3& up) {
-  Camera c;
-  c.eye = eye;
-  c.target = target;
-  c.up = up;
-  c.width = 640;
-  c.height = 480;
-  return c;
-}
+Camera look(const Vec3& eye, const Vec3& target, const Vec3& up) { return testing::look_at(eye, target, up, 640, 480); }
 
 Camera handle_camera() { return look(Vec3(0, 0, 9), Vec3::Zero(), Vec3::UnitY()); }
 Camera target_camera() { return look(Vec3(0, 9, 0.5), Vec3(0, 0, 0.5), Vec3::UnitZ()); }
@@ -176,6 +168,55 @@ TEST(DeformSession, HandleAndTargetStrokesMoveTheHandleRegion) {
   SketchSession again = blob();
   ASSERT_TRUE(again.deform(lift_op(before)));
   EXPECT_EQ(again.state().model.vertices, after.vertices);
+}
+
+TEST(DeformSession, LassoAndBrushRegionsOfInterest) {
+  SketchSession s = blob();
+  const TriMesh rest = s.state().model;
+  // A lasso about the handle (any depth inside it is free) and a brush along it.
+  DeformOp lasso = lift_op(rest);
+  lasso.roi.method = VertexSelection::Method::kLasso;
+  lasso.roi.camera = handle_camera();
+  lasso.roi.stroke = window_circle(Vec2(320, 200), 80.0, 48);
+  DeformOp brush = lift_op(rest);
+  brush.roi.method = VertexSelection::Method::kBrush;
+  brush.roi.camera = handle_camera();
+  brush.roi.radius = 0.1;
+  brush.roi.stroke = handle_stroke();
+  const std::vector<DeformOp> ops = {lasso, brush};
+  for (const DeformOp& op : ops) {
+    DeformOpReport report;
+    DeformOp o = op;
+    o.lambda = 0.5;
+    auto out = apply_deform(rest, {}, o, &report);
+    ASSERT_TRUE(out) << selection_method_name(op.roi.method) << ": " << out.message();
+    expect_solid(*out);
+    std::set<int> free(report.roi.begin(), report.roi.end()), handles(report.handles.begin(), report.handles.end());
+    for (int h : report.handles) EXPECT_FALSE(free.count(h)) << h;
+    for (std::size_t v = 0; v < rest.vertices.size(); ++v) {
+      const Vec2 p = handle_camera().project(rest.vertices[v])->head<2>();
+      bool selected;
+      if (op.roi.method == VertexSelection::Method::kLasso) {
+        selected = (p - Vec2(320, 200)).norm() < 79.0;  // inside the 48-gon
+      } else {
+        double d = 1e300;
+        for (int h : report.handles) d = std::min(d, (rest.vertices[v] - rest.vertices[static_cast<std::size_t>(h)]).norm());
+        selected = d < 0.05;  // a vertex this close to a handle is within the brush radius of the stroke
+      }
+      const int i = static_cast<int>(v);
+      if (handles.count(i)) continue;
+      if (selected) {
+        EXPECT_TRUE(free.count(i)) << selection_method_name(op.roi.method) << " " << v;
+      }
+      if (!free.count(i)) {
+        EXPECT_EQ(out->vertices[v], rest.vertices[v]) << v;
+      }
+    }
+    EXPECT_GT(top_under_handle(*out), top_under_handle(rest) + 0.5 * kLift);
+  }
+  // The session takes the same operation (and records it).
+  ASSERT_TRUE(s.deform(lasso));
+  EXPECT_EQ(std::get<DeformOp>(s.state().ops[0]).roi.method, VertexSelection::Method::kLasso);
 }
 
 TEST(DeformSession, UndoRestoresTheModelBitForBitAndRedoReapplies) {

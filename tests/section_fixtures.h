@@ -1,9 +1,12 @@
 #pragma once
-// Cross sections and strokes shared by the session tests: axis-aligned planes, circles on them,
-// circles in the window.
+// Cross sections, strokes and views shared by the session tests and benches: axis-aligned
+// planes, circles on them, circles in the window, a perspective camera.
 #include <cmath>
+#include <tuple>
+#include <utility>
 #include <vector>
 
+#include "modeling/camera.h"
 #include "modeling/cross_section.h"
 #include "modeling/mesh.h"
 
@@ -36,6 +39,14 @@ inline std::vector<Vec2> window_circle(const Vec2& c, double r, int n) {
   std::vector<Vec2> pts;
   for (int i = 0; i < n; ++i) pts.push_back(c + r * Vec2(std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n)));
   return pts;
+}
+
+// A perspective camera at `eye` looking at `target` (fov 40 degrees, width x height pixels).
+inline Camera look_at(const Vec3& eye, const Vec3& target, const Vec3& up, int width, int height) {
+  Camera c;
+  std::tie(c.eye, c.target, c.up) = std::tie(eye, target, up);
+  std::tie(c.width, c.height) = std::pair(width, height);
+  return c;
 }
 
 }  // namespace ps::testing
