@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # End to end (issue 5 point 6, issue 6 point 6): assets/logs/deform.jsonl (written by
 # scripts/make-deform-log, which must reproduce it) sketches three sections, paints a stiff patch,
-# and deforms the model in "deform" mode: a handle stroke over the top, the view turned, a target
-# stroke 0.3 above. Its replay must refuse nothing but the out-of-range stiffness parameter, keep
-# the model closed, manifold and free of self-intersections with the same connectivity, raise the
-# vertices under the handle by about 0.3, leave the lower half bit-identical, and be bit-identical
-# run to run.
+# and deforms the model twice: in "deform" mode (a handle stroke over the top, the view turned, a
+# target stroke 0.3 above) and in "sculpt" mode (an open stroke on the model is recognised as a
+# handle; the view turned, a target 0.2 above). Its replay must refuse nothing but the
+# out-of-range stiffness parameter, keep the model closed, manifold and free of self-intersections
+# with the same connectivity, raise the vertices under each handle by about its target's height,
+# leave the lower half bit-identical, and be bit-identical run to run.
 set -euo pipefail
 bin="${PLANESKETCH_BINARY:?}"
 src="${PLANESKETCH_SOURCE_DIR:?}"
@@ -35,14 +36,18 @@ def read(p):
 assert fa == fb and len(va) == len(vb), "the deformation changed the connectivity"
 a = [list(map(float, l.split()[1:4])) for l in va]
 b = [list(map(float, l.split()[1:4])) for l in vb]
-# The handle runs over the top at y ~ 0.47 between x = -0.445 and 0.445; the target is 0.3 higher.
-under = [q[2] - p[2] for p, q in zip(a, b) if abs(p[1] - 0.47) < 0.05 and abs(p[0]) < 0.3 and p[2] > 1.0]
-assert len(under) >= 10, len(under)
-mean = sum(under) / len(under)
-assert min(under) > 0.2 and abs(mean - 0.3) < 0.05, (min(under), mean)
+# The handles run over the top at y ~ 0.47 and y ~ -0.56 between x = -0.445 and 0.445; their
+# targets are 0.3 and 0.2 higher.
+rises = []
+for y, lift in ((0.47, 0.3), (-0.56, 0.2)):
+    under = [q[2] - p[2] for p, q in zip(a, b) if abs(p[1] - y) < 0.05 and abs(p[0]) < 0.3 and p[2] > 1.0]
+    assert len(under) >= 10, (y, len(under))
+    mean = sum(under) / len(under)
+    assert min(under) > 0.65 * lift and abs(mean - lift) < 0.05, (y, min(under), mean)
+    rises.append(f"{mean:.3f}")
 moved = [i for i in range(len(va)) if va[i] != vb[i]]
 assert 100 < len(moved) < len(va) // 2, len(moved)
 low = [i for i in range(len(va)) if a[i][2] < 0.3]
 assert len(low) > len(va) // 3 and all(va[i] == vb[i] for i in low), "the lower half moved"
-print(f"deform replay ok: {len(moved)} of {len(va)} vertices moved, handle region raised by {mean:.3f}")
+print(f"deform replay ok: {len(moved)} of {len(va)} vertices moved, handle regions raised by {' and '.join(rises)}")
 PY
