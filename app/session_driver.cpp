@@ -75,6 +75,7 @@ void SessionDriver::on_action(const TimedEvent& e) {
           pending_cut_.clear();
           pending_base_.clear();
           pending_handle_.clear();
+          pending_target_.clear();
           if (a.mode != "deform" && a.mode != "roi") pending_roi_.reset();
           if (auto st = input_.apply(e.event); !st) report(e.t, e.line, st.message());
         } else {
@@ -126,6 +127,7 @@ void SessionDriver::on_stroke(const Stroke& stroke) {
   pending_cut_.clear();
   pending_base_.clear();
   pending_handle_.clear();
+  pending_target_.clear();
   if (input_.mode != "sketch") {
     report(t, 0, "stroke in '" + input_.mode +
                      "' mode ignored: modes are sketch, sculpt, cut, tunnel, smooth, extrude, deform, roi and stiffness");
@@ -218,19 +220,34 @@ void SessionDriver::sculpt_stroke(double t, const std::vector<Vec2>& pts) {
 // its camera). The region of interest is the selection last drawn in "roi" mode (a closed
 // stroke is a lasso, an open one a brush of `brush_radius`), else every vertex within
 // `deform_radius` of the handle. Radii are fractions of the model's bounding-box diagonal;
-// `deform_rotation` (radians) turns the base plane about its axis; lambda is the session's.
+// `deform_rotation` (radians) turns the base plane about its axis; lambda is the session's. With
+// `deform_shadow` = 1 a third stroke follows the target: its shadow on the projection plane.
 void SessionDriver::deform_stroke(double t, const std::vector<Vec2>& pts) {
   if (pending_handle_.empty()) {
     pending_handle_ = pts;
     pending_handle_camera_ = input_.camera;
     return;
   }
+  const bool with_shadow = parameter("deform_shadow", 0.0) != 0.0;
+  if (with_shadow && pending_target_.empty()) {
+    pending_target_ = pts;
+    pending_target_camera_ = input_.camera;
+    return;
+  }
   DeformOp op;
   op.handle = std::move(pending_handle_);
   op.handle_camera = pending_handle_camera_;
   pending_handle_.clear();
-  op.target = pts;
-  op.target_camera = input_.camera;
+  if (with_shadow) {
+    op.target = std::move(pending_target_);
+    op.target_camera = pending_target_camera_;
+    pending_target_.clear();
+    op.shadow = pts;
+    op.shadow_camera = input_.camera;
+  } else {
+    op.target = pts;
+    op.target_camera = input_.camera;
+  }
   if (pending_roi_) {
     op.roi = *pending_roi_;
   } else {

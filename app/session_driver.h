@@ -61,6 +61,8 @@ class SessionDriver : public EventSink {
   Camera pending_base_camera_;
   std::vector<Vec2> pending_handle_;  // a deformation's handle stroke waiting for its target
   Camera pending_handle_camera_;
+  std::vector<Vec2> pending_target_;  // its target, waiting for the shadow (deform_shadow = 1)
+  Camera pending_target_camera_;
   // The region of interest drawn in "roi" mode for the next deformation (none: a radius).
   std::optional<VertexSelection> pending_roi_;
 };

@@ -135,6 +135,19 @@ std::vector<double> carry_stiffness(const TriMesh& before, const std::vector<dou
   return out;
 }
 
+// Every ray through `stroke` meets `plane` at 5 degrees or more (see apply_deform).
+Status check_facing(const std::vector<Vec2>& stroke, const Camera& camera, const Plane& plane, const char* what,
+                    const char* plane_name) {
+  const double min_sine = std::sin(5.0 * M_PI / 180.0);
+  for (const Vec2& p : stroke) {
+    const Ray ray = camera.ray(p.x(), p.y());
+    if (std::abs(ray.direction.dot(plane.normal)) < min_sine)
+      return Status::error(std::string(what) + ": the " + plane_name + " is seen edge-on at " + format_window_point(p) +
+                           " (turn the view towards it, or turn the plane)");
+  }
+  return Status::ok();
+}
+
 // One operation of the session's list applied to (model, stiffness); both unchanged on refusal.
 Status apply_op(TriMesh& model, std::vector<double>& stiffness, const SessionOp& op) {
   if (const auto* s = std::get_if<SculptOp>(&op)) {
@@ -191,19 +204,23 @@ Result<TriMesh> apply_deform(const TriMesh& model, const std::vector<double>& st
   auto planes = reference_planes(handle->points, op.plane_rotation);
   if (!planes) return R::error("handle stroke: " + planes.message());
   // A ray grazing the base plane lifts a pixel's jitter to a long way off: the target must be
-  // drawn with the plane in view (at least 5 degrees between the rays and the plane).
-  const double min_sine = std::sin(5.0 * M_PI / 180.0);
-  for (std::size_t i = 0; i < op.target.size(); ++i) {
-    const Ray ray = op.target_camera.ray(op.target[i].x(), op.target[i].y());
-    if (std::abs(ray.direction.dot(planes->base.normal)) < min_sine)
-      return R::error("target stroke: the base plane is seen edge-on at " + format_window_point(op.target[i]) +
-                      " (turn the view towards it, or turn the plane)");
+  // drawn with the plane in view (at least 5 degrees between the rays and the plane); the same
+  // for the shadow and the projection plane.
+  if (auto st = check_facing(op.target, op.target_camera, planes->base, "target stroke", "base plane"); !st) return st;
+  std::vector<Vec2> shadow_px;
+  if (!op.shadow.empty()) {
+    if (auto st = check_window_points(op.shadow, 2, "the shadow stroke"); !st) return st;
+    if (!finite_camera(op.shadow_camera)) return R::error("the shadow stroke's camera is not finite");
+    if (auto st = check_facing(op.shadow, op.shadow_camera, planes->projection, "shadow stroke", "projection plane"); !st)
+      return st;
+    shadow_px = smooth_polyline(filter_close_points(op.shadow, 4.0), false);
+    if (shadow_px.size() < 2) return R::error("shadow stroke: it is shorter than 4 pixels");
   }
   // Pen jitter would become bumps of the target curve: drop samples closer than 4 px, then one
   // pass of Eq. 3.1 smoothing (ends kept).
   const std::vector<Vec2> target_px = smooth_polyline(filter_close_points(op.target, 4.0), false);
   if (target_px.size() < 2) return R::error("target stroke: it is shorter than 4 pixels");
-  auto target = target_curve(op.target_camera, *planes, target_px);
+  auto target = target_curve(op.target_camera, target_px, op.shadow_camera, shadow_px, *planes);
   if (!target) return target.status();
   const std::vector<Vec3> targets = map_handles_to_target(model, *handle, *target);
   // === Region of interest (3.2.2): every other vertex is static

@@ -77,6 +77,10 @@ struct DeformOp {
   Camera handle_camera;
   std::vector<Vec2> target;  // window pixels, lifted onto the base plane
   Camera target_camera;
+  // Optional: the target's shadow on the projection plane (thesis 3.3.3, P_i = P_i^b + V_i),
+  // which makes the target a space curve; empty for a planar target.
+  std::vector<Vec2> shadow;
+  Camera shadow_camera;
   VertexSelection roi;
   double plane_rotation = 0.0;  // radians: turns the base plane about its axis (reference_planes)
   double lambda = 0.5;          // set by SketchSession::deform from SessionParams::lambda
@@ -100,8 +104,8 @@ struct DeformOpReport {
 
 // The deformation applied to a model whose painted stiffness is `stiffness` (#V values, NaN
 // where none was painted, or empty). Refused, naming the reason: no model, a stroke with fewer
-// than 2 points or a non-finite one, a handle stroke that misses the model, a target stroke
-// seen (nearly) edge-on on the base plane, an empty ROI, a bad radius or lambda, a solver
+// than 2 points or a non-finite one, a handle stroke that misses the model, a target (shadow)
+// stroke seen (nearly) edge-on on the base (projection) plane, an empty ROI, a bad radius or lambda, a solver
 // refusal, or a result that intersects itself.
 Result<TriMesh> apply_deform(const TriMesh& model, const std::vector<double>& stiffness, const DeformOp& op,
                              DeformOpReport* report = nullptr);

@@ -3,7 +3,8 @@
 # scripts/make-deform-log, which must reproduce it) sketches three sections, paints a stiff patch,
 # and deforms the model twice: in "deform" mode (a handle stroke over the top, the view turned, a
 # target stroke 0.3 above) and in "sculpt" mode (an open stroke on the model is recognised as a
-# handle; the view turned, a target 0.2 above). Its replay must refuse nothing but the
+# handle; the view turned, a target 0.2 above), and once more in "deform" mode with a shadow
+# stroke on the projection plane (three strokes, deform_shadow 1). Its replay must refuse nothing but the
 # out-of-range stiffness parameter, keep the model closed, manifold and free of self-intersections
 # with the same connectivity, raise the vertices under each handle by about its target's height,
 # leave the lower half bit-identical, and be bit-identical run to run.
@@ -45,6 +46,18 @@ for y, lift in ((0.47, 0.3), (-0.56, 0.2)):
     mean = sum(under) / len(under)
     assert min(under) > 0.65 * lift and abs(mean - lift) < 0.05, (y, min(under), mean)
     rises.append(f"{mean:.3f}")
+# The third handle runs down the top at x ~ 0.55 (y from 0.17 to -0.17), its target 0.2 higher,
+# its shadow bending the target towards +x by about 0.08 in the middle (y ~ 0), not at the ends.
+def shift(sel):
+    d = [[q[k] - p[k] for k in range(3)] for p, q in zip(a, b) if sel(p)]
+    assert len(d) >= 2, len(d)
+    return [sum(x[k] for x in d) / len(d) for k in range(3)]
+mid = shift(lambda p: abs(p[1]) < 0.05 and abs(p[0] - 0.55) < 0.05 and p[2] > 1.0)
+ends = shift(lambda p: abs(abs(p[1]) - 0.15) < 0.03 and abs(p[0] - 0.55) < 0.05 and p[2] > 1.0)
+# (It lies in the first deformation's region too, which lifted it a little already.)
+assert 0.15 < mid[2] < 0.3 and 0.15 < ends[2] < 0.3, (mid, ends)
+assert mid[0] > 0.04 and mid[0] > ends[0] + 0.03, (mid, ends)
+rises.append(f"{mid[2]:.3f} (bent {mid[0]:.3f} along x)")
 moved = [i for i in range(len(va)) if va[i] != vb[i]]
 assert 100 < len(moved) < len(va) // 2, len(moved)
 low = [i for i in range(len(va)) if a[i][2] < 0.3]

@@ -219,6 +219,55 @@ TEST(DeformSession, LassoAndBrushRegionsOfInterest) {
   EXPECT_EQ(std::get<DeformOp>(s.state().ops[0]).roi.method, VertexSelection::Method::kLasso);
 }
 
+TEST(DeformSession, AShadowOnTheProjectionPlaneBendsTheTargetOutOfTheBasePlane) {
+  // The projection plane contains the handle's axis and is orthogonal to the base plane (nearly
+  // horizontal here), so the view from above faces it. A shadow that is the handle's own window
+  // curve pushed down the window (towards -y) by up to 24 px in the middle makes the target a
+  // space curve: the middle of the handle moves towards -y as well as up.
+  SketchSession s = blob();
+  const TriMesh rest = s.state().model;
+  DeformOp plain = lift_op(rest);
+  plain.lambda = 0.5;
+  DeformOp bent = plain;
+  bent.shadow_camera = handle_camera();
+  const auto n = static_cast<double>(bent.handle.size() - 1);
+  for (std::size_t i = 0; i < bent.handle.size(); ++i)
+    bent.shadow.push_back(bent.handle[i] + Vec2(0, 24.0 * std::sin(M_PI * static_cast<double>(i) / n)));
+  const auto middle_shift = [&](const DeformOp& op) {
+    DeformOpReport report;
+    auto out = apply_deform(rest, {}, op, &report);
+    EXPECT_TRUE(out) << out.message();
+    if (!out) return Vec3(Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+    expect_solid(*out);
+    // Handle vertices whose closest point on the handle curve is in its middle fifth.
+    const MeshRayCaster caster(rest);
+    auto handle = project_handle_stroke(rest, caster, op.handle_camera, op.handle);
+    Vec3 sum = Vec3::Zero();
+    int count = 0;
+    for (std::size_t k = 0; k < handle->vertices.size(); ++k) {
+      if (std::abs(handle->parameters[k] - 0.5) > 0.1) continue;
+      const auto v = static_cast<std::size_t>(handle->vertices[k]);
+      sum += out->vertices[v] - rest.vertices[v];
+      ++count;
+    }
+    EXPECT_GT(count, 2);
+    return Vec3(sum / std::max(count, 1));
+  };
+  const Vec3 flat = middle_shift(plain), curved = middle_shift(bent);
+  EXPECT_LT(std::abs(flat.y()), 0.05) << flat.transpose();
+  EXPECT_LT(curved.y(), -0.15) << curved.transpose();
+  EXPECT_GT(curved.z(), 0.5 * kLift) << curved.transpose();
+  // The session keeps the shadow with the operation.
+  ASSERT_TRUE(s.deform(bent));
+  EXPECT_EQ(std::get<DeformOp>(s.state().ops[0]).shadow.size(), bent.shadow.size());
+  // Drawn looking along the projection plane, the shadow is refused.
+  DeformOp edge_on = bent;
+  edge_on.shadow_camera = target_camera();
+  const Status st = SketchSession(blob()).deform(edge_on);
+  ASSERT_FALSE(st);
+  EXPECT_NE(st.message().find("shadow stroke: the projection plane is seen edge-on"), std::string::npos) << st.message();
+}
+
 TEST(DeformSession, UndoRestoresTheModelBitForBitAndRedoReapplies) {
   SketchSession s = blob();
   const SessionState before = s.state();
