@@ -1,13 +1,20 @@
 #include "app/session_driver.h"
 
 #include <chrono>
-
-#include "modeling/sculpt_cut.h"
-#include "modeling/stroke_classify.h"
+#include <cmath>
 #include <type_traits>
 #include <variant>
 
+#include "modeling/sculpt_cut.h"
+#include "modeling/stroke_classify.h"
+#include "modeling/stroke_preprocess.h"
+
 namespace ps::app {
+namespace {
+// Defaults of the deformation tool's parameters (fractions of the bounding-box diagonal).
+constexpr double kRoiRadius = 0.2;
+constexpr double kBrushRadius = 0.05;
+}  // namespace
 
 SessionDriver::SessionDriver(SessionParams params) : session_(std::move(params)) {}
 
@@ -46,15 +53,30 @@ void SessionDriver::on_action(const TimedEvent& e) {
           if (a.name == "lambda" || a.name == "filter_px" || a.name == "improve") {
             if (auto st = session_.set_parameter(a.name, a.value); !st) report(e.t, e.line, st.message());
           }
+          // The deformation tool's own parameters, checked here so a bad value is reported when
+          // it is set (and not kept) rather than at the next stroke.
+          if ((a.name == "deform_radius" || a.name == "brush_radius") && !(a.value > 0.0 && std::isfinite(a.value))) {
+            report(e.t, e.line, a.name + " must be a positive fraction of the model's size; kept " +
+                                    std::to_string(parameter(a.name, a.name == "brush_radius" ? kBrushRadius : kRoiRadius)));
+            return;
+          }
+          if (a.name == "stiffness" && !(a.value >= 0.0 && a.value <= 1.0)) {
+            report(e.t, e.line, "stiffness must lie in [0, 1]; kept " + std::to_string(parameter("stiffness", 1.0)));
+            return;
+          }
           if (auto st = input_.apply(e.event); !st) report(e.t, e.line, st.message());
         } else if constexpr (std::is_same_v<T, Save>) {
           if (on_save) on_save(a.path);
         } else if constexpr (std::is_same_v<T, PenSample>) {
           on_pen_sample(a);
         } else if constexpr (std::is_same_v<T, SetToolMode>) {
-          // A two-stroke operation (cut, extrusion) left half-way is dropped with the old mode.
+          // A two-stroke operation (cut, extrusion, deformation) left half-way is dropped with the
+          // old mode; a region of interest drawn in "roi" mode waits for "deform".
           pending_cut_.clear();
           pending_base_.clear();
+          pending_handle_.clear();
+          pending_target_.clear();
+          if (a.mode != "deform" && a.mode != "roi") pending_roi_.reset();
           if (auto st = input_.apply(e.event); !st) report(e.t, e.line, st.message());
         } else {
           if (auto st = input_.apply(e.event); !st) report(e.t, e.line, st.message());
@@ -90,10 +112,25 @@ void SessionDriver::on_stroke(const Stroke& stroke) {
     sculpt_stroke(t, pts);
     return;
   }
+  if (input_.mode == "deform") {
+    deform_stroke(t, pts);
+    return;
+  }
+  if (input_.mode == "roi") {
+    pending_roi_ = selection_from(pts);
+    return;
+  }
+  if (input_.mode == "stiffness") {
+    stiffness_stroke(t, pts);
+    return;
+  }
   pending_cut_.clear();
   pending_base_.clear();
+  pending_handle_.clear();
+  pending_target_.clear();
   if (input_.mode != "sketch") {
-    report(t, 0, "stroke in '" + input_.mode + "' mode ignored: modes are sketch, sculpt, cut, tunnel, smooth and extrude");
+    report(t, 0, "stroke in '" + input_.mode +
+                     "' mode ignored: modes are sketch, sculpt, cut, tunnel, smooth, extrude, deform, roi and stiffness");
     return;
   }
   const auto plane = input_.current_plane();
@@ -118,6 +155,10 @@ void SessionDriver::on_stroke(const Stroke& stroke) {
 // the view was turned: each stroke keeps the camera it was drawn under). Tunnels have their own
 // mode.
 void SessionDriver::sculpt_stroke(double t, const std::vector<Vec2>& pts) {
+  if (!pending_handle_.empty()) {
+    deform_stroke(t, pts);  // a recognised deformation stroke's target
+    return;
+  }
   SculptOp op;
   op.camera = input_.camera;
   if (!pending_base_.empty()) {
@@ -158,8 +199,8 @@ void SessionDriver::sculpt_stroke(double t, const std::vector<Vec2>& pts) {
       case StrokeClass::kOpenCutting:
         pending_cut_ = pts;
         return;
-      case StrokeClass::kOpenDeformation:
-        report(t, 0, "deformation stroke: the deformation tool runs from `planesketch deform` (not yet in the session); model unchanged");
+      case StrokeClass::kOpenDeformation:  // the handle; the next stroke is its target
+        deform_stroke(t, pts);
         return;
       case StrokeClass::kOpenMiss:
         report(t, 0, "the stroke misses the model; model unchanged");
@@ -172,6 +213,83 @@ void SessionDriver::sculpt_stroke(double t, const std::vector<Vec2>& pts) {
     return;
   }
   changed();
+}
+
+// === Deformation (thesis 3.2.2, 3.3.3, chapter 5). Two strokes: the handle over the model, then
+// the target on the base plane fitted to the handle (the view may turn in between: each keeps
+// its camera). The region of interest is the selection last drawn in "roi" mode (a closed
+// stroke is a lasso, an open one a brush of `brush_radius`), else every vertex within
+// `deform_radius` of the handle. Radii are fractions of the model's bounding-box diagonal;
+// `deform_rotation` (radians) turns the base plane about its axis; lambda is the session's. With
+// `deform_shadow` = 1 a third stroke follows the target: its shadow on the projection plane.
+void SessionDriver::deform_stroke(double t, const std::vector<Vec2>& pts) {
+  if (pending_handle_.empty()) {
+    pending_handle_ = pts;
+    pending_handle_camera_ = input_.camera;
+    return;
+  }
+  const bool with_shadow = parameter("deform_shadow", 0.0) != 0.0;
+  if (with_shadow && pending_target_.empty()) {
+    pending_target_ = pts;
+    pending_target_camera_ = input_.camera;
+    return;
+  }
+  DeformOp op;
+  op.handle = std::move(pending_handle_);
+  op.handle_camera = pending_handle_camera_;
+  pending_handle_.clear();
+  if (with_shadow) {
+    op.target = std::move(pending_target_);
+    op.target_camera = pending_target_camera_;
+    pending_target_.clear();
+    op.shadow = pts;
+    op.shadow_camera = input_.camera;
+  } else {
+    op.target = pts;
+    op.target_camera = input_.camera;
+  }
+  if (pending_roi_) {
+    op.roi = *pending_roi_;
+  } else {
+    op.roi.method = VertexSelection::Method::kRadius;
+    op.roi.radius = parameter("deform_radius", kRoiRadius);
+  }
+  op.plane_rotation = parameter("deform_rotation", 0.0);
+  if (auto st = session_.deform(op); !st) {
+    report(t, 0, "stroke refused: " + st.message());
+    return;
+  }
+  pending_roi_.reset();
+  changed();
+}
+
+// === Stiffness painting (thesis 5.4): a closed stroke paints the lasso's vertices, an open one
+// brushes; the value is the `stiffness` parameter (default 1, rigid).
+void SessionDriver::stiffness_stroke(double t, const std::vector<Vec2>& pts) {
+  StiffnessOp op;
+  op.region = selection_from(pts);
+  op.value = parameter("stiffness", 1.0);
+  if (auto st = session_.paint_stiffness(op); !st) {
+    report(t, 0, "stroke refused: " + st.message());
+    return;
+  }
+  changed();
+}
+
+VertexSelection SessionDriver::selection_from(const std::vector<Vec2>& pts) const {
+  VertexSelection sel;
+  const auto filtered = filter_close_points(pts, session_.params().stroke.min_spacing_px);
+  sel.method = filtered.size() >= 3 && is_closed_stroke(filtered, session_.params().stroke) ? VertexSelection::Method::kLasso
+                                                                                          : VertexSelection::Method::kBrush;
+  sel.radius = parameter("brush_radius", kBrushRadius);
+  sel.stroke = pts;
+  sel.camera = input_.camera;
+  return sel;
+}
+
+double SessionDriver::parameter(const std::string& name, double fallback) const {
+  const auto it = input_.parameters.find(name);
+  return it == input_.parameters.end() ? fallback : it->second;
 }
 
 }  // namespace ps::app

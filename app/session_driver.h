@@ -2,6 +2,7 @@
 // Drives a SketchSession from input events: the one code path shared by the live window and
 // headless replay (the replayer and the window both call this EventSink).
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,11 @@ class SessionDriver : public EventSink {
  private:
   void report(double t, int line, const std::string& text);
   void sculpt_stroke(double t, const std::vector<Vec2>& pts);
+  void deform_stroke(double t, const std::vector<Vec2>& pts);
+  void stiffness_stroke(double t, const std::vector<Vec2>& pts);
+  // A lasso (closed stroke) or brush (open stroke) selection from a stroke under the current camera.
+  VertexSelection selection_from(const std::vector<Vec2>& pts) const;
+  double parameter(const std::string& name, double fallback) const;
   void changed();
 
   SketchSession session_;
@@ -53,6 +59,12 @@ class SessionDriver : public EventSink {
   std::vector<Vec2> pending_cut_;  // a cutting stroke waiting for the stroke that marks the side
   std::vector<Vec2> pending_base_;  // an extrusion's base stroke waiting for its silhouette
   Camera pending_base_camera_;
+  std::vector<Vec2> pending_handle_;  // a deformation's handle stroke waiting for its target
+  Camera pending_handle_camera_;
+  std::vector<Vec2> pending_target_;  // its target, waiting for the shadow (deform_shadow = 1)
+  Camera pending_target_camera_;
+  // The region of interest drawn in "roi" mode for the next deformation (none: a radius).
+  std::optional<VertexSelection> pending_roi_;
 };
 
 }  // namespace ps::app

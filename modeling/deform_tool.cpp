@@ -223,6 +223,12 @@ std::vector<Vec3> resample_by_arc_length(const std::vector<Vec3>& poly, int n) {
 
 Result<std::vector<Vec3>> target_curve(const Camera& camera, const ReferencePlanes& planes,
                                        const std::vector<Vec2>& base_px, const std::vector<Vec2>& shadow_px) {
+  return target_curve(camera, base_px, camera, shadow_px, planes);
+}
+
+Result<std::vector<Vec3>> target_curve(const Camera& camera, const std::vector<Vec2>& base_px,
+                                       const Camera& shadow_camera, const std::vector<Vec2>& shadow_px,
+                                       const ReferencePlanes& planes) {
   if (base_px.size() < 2) return Result<std::vector<Vec3>>::error("target stroke: needs at least two points");
   std::vector<Vec3> base;
   for (std::size_t i = 0; i < base_px.size(); ++i) {
@@ -235,7 +241,7 @@ Result<std::vector<Vec3>> target_curve(const Camera& camera, const ReferencePlan
   if (shadow_px.empty()) return base;
   std::vector<Vec3> shadow;
   for (std::size_t i = 0; i < shadow_px.size(); ++i) {
-    auto p = camera.lift(shadow_px[i].x(), shadow_px[i].y(), planes.projection);
+    auto p = shadow_camera.lift(shadow_px[i].x(), shadow_px[i].y(), planes.projection);
     if (!p)
       return Result<std::vector<Vec3>>::error("shadow stroke: point " + std::to_string(i) +
                                               " does not reach the projection plane");

@@ -83,6 +83,11 @@ Result<ReferencePlanes> reference_planes(const std::vector<Vec3>& handle_points,
 // space curve P_i = P_i^b + (P_i^p - proj(P_i^b)). Refused if a point's ray misses a plane.
 Result<std::vector<Vec3>> target_curve(const Camera& camera, const ReferencePlanes& planes,
                                        const std::vector<Vec2>& base_px, const std::vector<Vec2>& shadow_px = {});
+// The same with the shadow drawn under its own camera (the view turned to face the projection
+// plane after drawing the base stroke).
+Result<std::vector<Vec3>> target_curve(const Camera& base_camera, const std::vector<Vec2>& base_px,
+                                       const Camera& shadow_camera, const std::vector<Vec2>& shadow_px,
+                                       const ReferencePlanes& planes);
 
 // Target position per handle vertex (same order as handle.vertices).
 std::vector<Vec3> map_handles_to_target(const TriMesh& mesh, const HandleCurve& handle,

@@ -1,10 +1,14 @@
 #include "modeling/sketch_session.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
 #include "modeling/curve_sewing.h"
+#include "modeling/deform_tool.h"
+#include "modeling/face_intersections.h"
 #include "modeling/mesh_improve.h"
 #include "modeling/sculpt_cut.h"
 #include "modeling/sculpt_extrude.h"
@@ -47,7 +51,238 @@ void compact_planes(SectionSet& set) {
   set.planes = std::move(kept);
 }
 
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+bool finite_camera(const Camera& c) {
+  return c.eye.allFinite() && c.target.allFinite() && c.up.allFinite() && std::isfinite(c.fov_y_deg) &&
+         std::isfinite(c.ortho_height) && c.width > 0 && c.height > 0 && (c.target - c.eye).norm() > 0.0;
+}
+
+// The stroke with a point at least every `step_px` pixels (the ray casts of a brush must not
+// leave gaps between sparse pen samples).
+std::vector<Vec2> densify(const std::vector<Vec2>& stroke, double step_px) {
+  std::vector<Vec2> out;
+  if (stroke.empty()) return out;
+  out.push_back(stroke.front());
+  for (std::size_t i = 1; i < stroke.size(); ++i) {
+    const Vec2 a = stroke[i - 1], b = stroke[i];
+    const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step_px)));
+    for (int k = 1; k <= n; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / n));
+  }
+  return out;
+}
+
+// The vertices `sel` picks on `model` (kRadius around `handles`), excluding `handles`; sorted.
+// `what` names the selection in messages ("the region of interest", "the stiffness region").
+Result<std::vector<int>> select_vertices(const TriMesh& model, const VertexSelection& sel,
+                                         const std::vector<int>& handles, const MeshRayCaster& caster,
+                                         const std::string& what) {
+  using R = Result<std::vector<int>>;
+  const double diagonal = bounding_box(model.vertices).diagonal();
+  if (sel.method != VertexSelection::Method::kLasso && !(sel.radius > 0.0 && std::isfinite(sel.radius)))
+    return R::error(what + ": the " + selection_method_name(sel.method) +
+                    " radius must be a positive fraction of the model's size (got " + std::to_string(sel.radius) + ")");
+  std::vector<int> picked;
+  switch (sel.method) {
+    case VertexSelection::Method::kRadius:
+      picked = roi_by_radius(model, handles, sel.radius * diagonal);
+      break;
+    case VertexSelection::Method::kLasso: {
+      if (auto st = check_window_points(sel.stroke, 3, "the lasso stroke"); !st) return R::error(what + ": " + st.message());
+      if (!finite_camera(sel.camera)) return R::error(what + ": the lasso's camera is not finite");
+      picked = roi_by_lasso(model, sel.camera, sel.stroke, handles);
+      break;
+    }
+    case VertexSelection::Method::kBrush: {
+      if (auto st = check_window_points(sel.stroke, 1, "the brush stroke"); !st) return R::error(what + ": " + st.message());
+      if (!finite_camera(sel.camera)) return R::error(what + ": the brush's camera is not finite");
+      const std::vector<Vec3> under = project_stroke(caster, sel.camera, densify(sel.stroke, 2.0));
+      if (under.empty()) return R::error(what + ": the brush stroke misses the model");
+      picked = roi_by_brush(model, under, sel.radius * diagonal, handles);
+      break;
+    }
+  }
+  if (picked.empty())
+    return R::error(what + " is empty: the " + selection_method_name(sel.method) + " selects no vertex" +
+                    (handles.empty() ? "" : " besides the handle vertices"));
+  return picked;
+}
+
+// Stiffness of `before` carried to `after`, the result of an operation on it: by index when the
+// operation kept the connectivity, else by exact vertex position (unmatched vertices: NaN).
+std::vector<double> carry_stiffness(const TriMesh& before, const std::vector<double>& stiffness, const TriMesh& after) {
+  if (stiffness.empty()) return {};
+  if (after.vertices.size() == before.vertices.size() && after.faces == before.faces) return stiffness;
+  std::vector<int> order(before.vertices.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  const auto less = [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return less(before.vertices[static_cast<std::size_t>(a)], before.vertices[static_cast<std::size_t>(b)]);
+  });
+  std::vector<double> out(after.vertices.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t v = 0; v < after.vertices.size(); ++v) {
+    const Vec3& p = after.vertices[v];
+    const auto it = std::lower_bound(order.begin(), order.end(), p, [&](int a, const Vec3& q) {
+      return less(before.vertices[static_cast<std::size_t>(a)], q);
+    });
+    if (it != order.end() && before.vertices[static_cast<std::size_t>(*it)] == p)
+      out[v] = stiffness[static_cast<std::size_t>(*it)];
+  }
+  return out;
+}
+
+// Every ray through `stroke` meets `plane` at 5 degrees or more (see apply_deform).
+Status check_facing(const std::vector<Vec2>& stroke, const Camera& camera, const Plane& plane, const char* what,
+                    const char* plane_name) {
+  const double min_sine = std::sin(5.0 * M_PI / 180.0);
+  for (const Vec2& p : stroke) {
+    const Ray ray = camera.ray(p.x(), p.y());
+    if (std::abs(ray.direction.dot(plane.normal)) < min_sine)
+      return Status::error(std::string(what) + ": the " + plane_name + " is seen edge-on at " + format_window_point(p) +
+                           " (turn the view towards it, or turn the plane)");
+  }
+  return Status::ok();
+}
+
+// One operation of the session's list applied to (model, stiffness); both unchanged on refusal.
+Status apply_op(TriMesh& model, std::vector<double>& stiffness, const SessionOp& op) {
+  if (const auto* s = std::get_if<SculptOp>(&op)) {
+    auto out = apply_sculpt(model, *s);
+    if (!out) return out.status();
+    stiffness = carry_stiffness(model, stiffness, *out);
+    model = std::move(*out);
+  } else if (const auto* d = std::get_if<DeformOp>(&op)) {
+    auto out = apply_deform(model, stiffness, *d);
+    if (!out) return out.status();
+    model = std::move(*out);
+  } else {
+    auto out = apply_stiffness(model, stiffness, std::get<StiffnessOp>(op));
+    if (!out) return out.status();
+    stiffness = std::move(*out);
+  }
+  return Status::ok();
+}
+
 }  // namespace
+
+const char* selection_method_name(VertexSelection::Method method) {
+  switch (method) {
+    case VertexSelection::Method::kRadius: return "radius";
+    case VertexSelection::Method::kLasso: return "lasso";
+    case VertexSelection::Method::kBrush: return "brush";
+  }
+  return "?";
+}
+
+const char* session_op_name(const SessionOp& op) {
+  if (const auto* s = std::get_if<SculptOp>(&op)) return sculpt_kind_name(s->kind);
+  return std::holds_alternative<DeformOp>(op) ? "deform" : "stiffness";
+}
+
+Result<TriMesh> apply_deform(const TriMesh& model, const std::vector<double>& stiffness, const DeformOp& op,
+                             DeformOpReport* report) {
+  using R = Result<TriMesh>;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (model.faces.empty()) return R::error("there is no model to deform: sketch cross sections first");
+  if (auto st = check_window_points(op.handle, 2, "the handle stroke"); !st) return st;
+  if (auto st = check_window_points(op.target, 2, "the target stroke"); !st) return st;
+  if (!finite_camera(op.handle_camera)) return R::error("the handle stroke's camera is not finite");
+  if (!finite_camera(op.target_camera)) return R::error("the target stroke's camera is not finite");
+  if (!(op.lambda >= 0.0 && op.lambda <= 1.0)) return R::error("lambda must lie in [0, 1]");
+  if (!std::isfinite(op.plane_rotation)) return R::error("the base plane's rotation is not finite");
+  if (!stiffness.empty() && stiffness.size() != model.vertices.size())
+    return R::error("the stiffness field has " + std::to_string(stiffness.size()) + " values for " +
+                    std::to_string(model.vertices.size()) + " vertices");
+  // === Handle curve, reference planes, target curve (3.3.3)
+  const MeshRayCaster caster(model);
+  auto handle = project_handle_stroke(model, caster, op.handle_camera, op.handle);
+  if (!handle) return handle.status();
+  auto planes = reference_planes(handle->points, op.plane_rotation);
+  if (!planes) return R::error("handle stroke: " + planes.message());
+  // A ray grazing the base plane lifts a pixel's jitter to a long way off: the target must be
+  // drawn with the plane in view (at least 5 degrees between the rays and the plane); the same
+  // for the shadow and the projection plane.
+  if (auto st = check_facing(op.target, op.target_camera, planes->base, "target stroke", "base plane"); !st) return st;
+  std::vector<Vec2> shadow_px;
+  if (!op.shadow.empty()) {
+    if (auto st = check_window_points(op.shadow, 2, "the shadow stroke"); !st) return st;
+    if (!finite_camera(op.shadow_camera)) return R::error("the shadow stroke's camera is not finite");
+    if (auto st = check_facing(op.shadow, op.shadow_camera, planes->projection, "shadow stroke", "projection plane"); !st)
+      return st;
+    shadow_px = smooth_polyline(filter_close_points(op.shadow, 4.0), false);
+    if (shadow_px.size() < 2) return R::error("shadow stroke: it is shorter than 4 pixels");
+  }
+  // Pen jitter would become bumps of the target curve: drop samples closer than 4 px, then one
+  // pass of Eq. 3.1 smoothing (ends kept).
+  const std::vector<Vec2> target_px = smooth_polyline(filter_close_points(op.target, 4.0), false);
+  if (target_px.size() < 2) return R::error("target stroke: it is shorter than 4 pixels");
+  auto target = target_curve(op.target_camera, target_px, op.shadow_camera, shadow_px, *planes);
+  if (!target) return target.status();
+  const std::vector<Vec3> targets = map_handles_to_target(model, *handle, *target);
+  // === Region of interest (3.2.2): every other vertex is static
+  auto roi = select_vertices(model, op.roi, handle->vertices, caster, "the region of interest");
+  if (!roi) return roi.status();
+  const double select_ms = ms_since(t0);
+  // === Solve (chapter 5): global lambda, painted stiffness where painted
+  DeformParameters params;
+  params.lambda = op.lambda;
+  params.vertex_lambda = stiffness;
+  EdgeGraphDeformer deformer;
+  if (auto st = deformer.set_mesh(model); !st) return R::error("deformation: " + st.message());
+  if (auto st = deformer.set_region(*roi, handle->vertices, params); !st) return R::error("deformation: " + st.message());
+  if (auto st = deformer.deform(targets); !st) return R::error("deformation: " + st.message());
+  TriMesh out = deformer.result();
+  // === The result must stay free of self-intersections; only faces at moved vertices can
+  // have made a new one.
+  const auto t1 = std::chrono::steady_clock::now();
+  std::vector<char> moved(model.vertices.size(), 0);
+  for (int v : *roi) moved[static_cast<std::size_t>(v)] = 1;
+  for (int v : handle->vertices) moved[static_cast<std::size_t>(v)] = 1;
+  std::vector<int> query;
+  for (std::size_t f = 0; f < out.faces.size(); ++f)
+    if (moved[static_cast<std::size_t>(out.faces[f][0])] || moved[static_cast<std::size_t>(out.faces[f][1])] ||
+        moved[static_cast<std::size_t>(out.faces[f][2])])
+      query.push_back(static_cast<int>(f));
+  for (const Vec3& p : out.vertices)
+    if (!p.allFinite()) return R::error("deformation: the solver produced a non-finite vertex");
+  const auto pairs = intersecting_face_pairs(out.vertices, out.faces, query);
+  if (!pairs.empty())
+    return R::error("the deformed surface would intersect itself (faces " + std::to_string(pairs.front()[0]) + " and " +
+                    std::to_string(pairs.front()[1]) + "): move the target less far or widen the region");
+  if (report) {
+    report->handles = handle->vertices;
+    report->roi = std::move(*roi);
+    report->targets = targets;
+    report->select_ms = select_ms;
+    report->check_ms = ms_since(t1);
+    report->solver = deformer.stats();
+  }
+  return out;
+}
+
+Result<std::vector<double>> apply_stiffness(const TriMesh& model, const std::vector<double>& stiffness,
+                                            const StiffnessOp& op) {
+  using R = Result<std::vector<double>>;
+  if (model.faces.empty()) return R::error("there is no model to paint: sketch cross sections first");
+  if (!(op.value >= 0.0 && op.value <= 1.0))
+    return R::error("the stiffness value must lie in [0, 1] (got " + std::to_string(op.value) + ")");
+  if (op.region.method == VertexSelection::Method::kRadius)
+    return R::error("stiffness is painted with a lasso or a brush, not a radius");
+  if (!stiffness.empty() && stiffness.size() != model.vertices.size())
+    return R::error("the stiffness field has " + std::to_string(stiffness.size()) + " values for " +
+                    std::to_string(model.vertices.size()) + " vertices");
+  const MeshRayCaster caster(model);
+  auto picked = select_vertices(model, op.region, {}, caster, "the stiffness region");
+  if (!picked) return picked.status();
+  std::vector<double> out = stiffness;
+  if (out.empty()) out.assign(model.vertices.size(), std::numeric_limits<double>::quiet_NaN());
+  for (int v : *picked) out[static_cast<std::size_t>(v)] = op.value;
+  return out;
+}
 
 const char* sculpt_kind_name(SculptOp::Kind kind) {
   switch (kind) {
@@ -81,11 +316,37 @@ Status SketchSession::sculpt(const SculptOp& op) {
   if (!out) return Status::error(std::string(sculpt_kind_name(op.kind)) + ": " + out.message());
   SessionState next = state_;
   next.ops.push_back(op);
+  next.stiffness = carry_stiffness(state_.model, state_.stiffness, *out);
   next.model = std::move(*out);
+  push(std::move(next));
+  return Status::ok();
+}
+
+Status SketchSession::deform(DeformOp op) {
+  op.lambda = params_.lambda;
+  auto out = apply_deform(state_.model, state_.stiffness, op);
+  if (!out) return Status::error("deform: " + out.message());
+  SessionState next = state_;
+  next.ops.push_back(std::move(op));
+  next.model = std::move(*out);
+  push(std::move(next));
+  return Status::ok();
+}
+
+Status SketchSession::paint_stiffness(const StiffnessOp& op) {
+  auto out = apply_stiffness(state_.model, state_.stiffness, op);
+  if (!out) return Status::error("stiffness: " + out.message());
+  SessionState next = state_;
+  next.ops.push_back(op);
+  next.stiffness = std::move(*out);
+  push(std::move(next));
+  return Status::ok();
+}
+
+void SketchSession::push(SessionState next) {
   undo_.push_back(std::move(state_));
   redo_.clear();
   state_ = std::move(next);
-  return Status::ok();
 }
 
 Status SketchSession::add_window_stroke(const std::vector<Vec2>& window_points,
@@ -192,6 +453,7 @@ Status SketchSession::commit(SessionState next) {
       return Status::error("the model has been sculpted; deleting its last section would lose that work (undo the sculpting first)");
     next.sewn = next.sections;
     next.model = TriMesh{};
+    next.stiffness.clear();
   } else {
     SewingReport sewing;
     auto sewn = sew_curves(next.sections, SewingParams{}, &sewing);
@@ -212,21 +474,20 @@ Status SketchSession::commit(SessionState next) {
                                   " faces: shown without refinement and smoothing");
       }
     }
-    // Sculpting done on the previous model is applied again to the new reconstruction.
+    // Sculpting, deformation and painting done on the previous model are applied again to the
+    // new reconstruction, in order.
+    std::vector<double> stiffness;
     for (std::size_t k = 0; k < next.ops.size(); ++k) {
-      auto sculpted = apply_sculpt(*mesh, next.ops[k]);
-      if (!sculpted)
-        return Status::error("the new sections would undo sculpting operation " + std::to_string(k + 1) + " (" +
-                             sculpt_kind_name(next.ops[k].kind) + "): " + sculpted.message());
-      *mesh = std::move(*sculpted);
+      if (auto st = apply_op(*mesh, stiffness, next.ops[k]); !st)
+        return Status::error("the new sections would undo operation " + std::to_string(k + 1) + " (" +
+                             session_op_name(next.ops[k]) + "): " + st.message());
     }
     next.sewn = std::move(*sewn);
     next.model = std::move(*mesh);
+    next.stiffness = std::move(stiffness);
     next.hints = report.warnings;
   }
-  undo_.push_back(std::move(state_));
-  redo_.clear();
-  state_ = std::move(next);
+  push(std::move(next));
   report_ = std::move(report);
   return Status::ok();
 }

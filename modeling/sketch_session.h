@@ -12,10 +12,12 @@
 // (lifted, preprocessed) curves; curve sewing (rule 4) runs on the whole set at every rebuild,
 // so the model is a function of the set of curves, not of the order they were drawn in.
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "modeling/camera.h"
 #include "modeling/cross_section.h"
+#include "modeling/edge_graph_deformer.h"
 #include "modeling/mesh.h"
 #include "modeling/reconstruct.h"
 #include "modeling/status.h"
@@ -29,7 +31,7 @@ struct SessionParams {
   // Above this many faces in the initial union the preview is shown unimproved (with a hint):
   // the improvement's exact self-intersection checks would stall the interactive loop.
   std::size_t improve_max_faces = 6000;
-  double lambda = 0.5;  // deformation balance, kept for the deformation tool
+  double lambda = 0.5;  // deformation balance (thesis 5.4), recorded with each DeformOp
 };
 
 // A sculpting operation by stroke (thesis 3.2.2; modeling/sculpt_cut.h, sculpt_smooth.h), kept
@@ -49,14 +51,87 @@ const char* sculpt_kind_name(SculptOp::Kind kind);
 // The operation applied to a model (refusals name the reason; the model is a value).
 Result<TriMesh> apply_sculpt(const TriMesh& model, const SculptOp& op);
 
+// Vertices chosen by stroke (thesis 3.2.2 "Deformation tool", 5.4): the region of interest of a
+// deformation, or the vertices a stiffness value is painted on. Radii are fractions of the
+// model's bounding-box diagonal, so a log means the same at every model scale.
+struct VertexSelection {
+  enum class Method {
+    kRadius,  // vertices within `radius` of a handle vertex (deformation ROI only)
+    kLasso,   // vertices whose window projection lies inside the closed `stroke` (any depth)
+    kBrush,   // vertices within `radius` of the surface points under `stroke`
+  };
+  Method method = Method::kRadius;
+  double radius = 0.2;       // kRadius, kBrush
+  std::vector<Vec2> stroke;  // kLasso, kBrush: window pixels
+  Camera camera;             // kLasso, kBrush: the camera `stroke` was drawn under
+};
+const char* selection_method_name(VertexSelection::Method method);
+
+// A deformation by strokes (thesis 3.2.2, 3.3.3, chapter 5; modeling/deform_tool.h and
+// edge_graph_deformer.h): the handle stroke drawn over the model, the target stroke drawn on the
+// base plane fitted to the handle (each with its own camera: the view may turn in between), the
+// region of interest, and the global balance lambda. Vertices neither in the ROI nor handles are
+// static and keep their bits.
+struct DeformOp {
+  std::vector<Vec2> handle;  // window pixels, over the model
+  Camera handle_camera;
+  std::vector<Vec2> target;  // window pixels, lifted onto the base plane
+  Camera target_camera;
+  // Optional: the target's shadow on the projection plane (thesis 3.3.3, P_i = P_i^b + V_i),
+  // which makes the target a space curve; empty for a planar target.
+  std::vector<Vec2> shadow;
+  Camera shadow_camera;
+  VertexSelection roi;
+  double plane_rotation = 0.0;  // radians: turns the base plane about its axis (reference_planes)
+  double lambda = 0.5;          // set by SketchSession::deform from SessionParams::lambda
+};
+
+// Stiffness painting (thesis 5.4): `value` in [0, 1] becomes the per-vertex lambda of the
+// selected vertices (a lasso or a brush) for the deformations that follow.
+struct StiffnessOp {
+  VertexSelection region;  // kLasso or kBrush
+  double value = 1.0;
+};
+
+// What apply_deform did (for the bench and the app).
+struct DeformOpReport {
+  std::vector<int> handles, roi;   // handle vertices and free vertices
+  std::vector<Vec3> targets;       // per handle vertex
+  double select_ms = 0.0;          // ray casting, planes, target curve, ROI
+  double check_ms = 0.0;           // the self-intersection test of the result
+  DeformStats solver;              // set_mesh + set_region + deform
+};
+
+// The deformation applied to a model whose painted stiffness is `stiffness` (#V values, NaN
+// where none was painted, or empty). Refused, naming the reason: no model, a stroke with fewer
+// than 2 points or a non-finite one, a handle stroke that misses the model, a target (shadow)
+// stroke seen (nearly) edge-on on the base (projection) plane, an empty ROI, a bad radius or lambda, a solver
+// refusal, or a result that intersects itself.
+Result<TriMesh> apply_deform(const TriMesh& model, const std::vector<double>& stiffness, const DeformOp& op,
+                             DeformOpReport* report = nullptr);
+// The stiffness field after painting `op` on `model` (input: #V values or empty = unpainted).
+// Refused: a value outside [0, 1], the radius method, a bad stroke or radius, nothing selected.
+Result<std::vector<double>> apply_stiffness(const TriMesh& model, const std::vector<double>& stiffness,
+                                            const StiffnessOp& op);
+
+// Every operation the session applies after reconstructing its sections, in order.
+using SessionOp = std::variant<SculptOp, DeformOp, StiffnessOp>;
+// "cut", "tunnel", "smooth", "extrude", "deform" or "stiffness".
+const char* session_op_name(const SessionOp& op);
+
 struct SessionState {
   SectionSet sections;  // the user's curves (before sewing)
   SectionSet sewn;      // the curves the model interpolates (after sewing)
-  // Sculpting operations, applied in order to the reconstruction of `sewn`. Editing the
-  // sections rebuilds the reconstruction and applies them again; a section edit that makes one
-  // of them fail is refused (the sculpted model is never silently lost).
-  std::vector<SculptOp> ops;
+  // Sculpting, deformation and stiffness painting, applied in order to the reconstruction of
+  // `sewn`. Editing the sections rebuilds the reconstruction and applies them again; a section
+  // edit that makes one of them fail is refused (the sculpted model is never silently lost).
+  std::vector<SessionOp> ops;
   TriMesh model;        // reconstruction of `sewn`, then `ops` (empty when there are no sections)
+  // Painted stiffness per vertex of `model` (NaN: not painted, the global lambda applies);
+  // empty while nothing is painted. A deformation keeps the vertices, so it keeps the field; a
+  // sculpting operation that rebuilds the mesh keeps the values of the vertices it keeps
+  // exactly (Booleans keep their input vertices), new vertices are unpainted.
+  std::vector<double> stiffness;
   std::vector<std::string> hints;  // e.g. "the model has 2 separate parts"
 };
 
@@ -77,6 +152,10 @@ class SketchSession {
   Status delete_section(int index);
   // Applies a sculpting operation to the current model (undoable like every other change).
   Status sculpt(const SculptOp& op);
+  // Deforms the current model (op.lambda is replaced by the session's lambda, which is recorded
+  // with the operation), or paints stiffness on it. Undoable; refusals change nothing.
+  Status deform(DeformOp op);
+  Status paint_stiffness(const StiffnessOp& op);
   // The section whose window-space polyline passes nearest to `window_point`, within
   // `radius_px`; -1 if none.
   int pick_section(const Vec2& window_point, const Camera& camera, double radius_px) const;
@@ -95,6 +174,8 @@ class SketchSession {
   // Rebuild `next` (sew + reconstruct); on success commit it, pushing the old state on the undo
   // stack; on failure leave everything unchanged.
   Status commit(SessionState next);
+  // Pushes the current state on the undo stack and makes `next` current.
+  void push(SessionState next);
 
   SessionParams params_;
   SessionState state_;

@@ -10,29 +10,14 @@
 #include "modeling/mesh_topology.h"
 #include "modeling/sculpt_extrude.h"
 #include "modeling/sketch_session.h"
+#include "tests/section_fixtures.h"
 
 namespace ps {
 namespace {
 
-std::vector<Vec3> circle(int axis, double offset, double r, int n = 40) {
-  std::vector<Vec3> pts;
-  for (int i = 0; i < n; ++i) {
-    const double a = 2 * M_PI * i / n;
-    Vec3 p;
-    p[axis] = offset;
-    p[(axis + 1) % 3] = r * std::cos(a);
-    p[(axis + 2) % 3] = r * std::sin(a);
-    pts.push_back(p);
-  }
-  return pts;
-}
-
-Plane axis_plane(int axis, double offset) {
-  Plane p;
-  p.normal = Vec3::Unit(axis);
-  p.offset = offset;
-  return p;
-}
+using testing::axis_plane;
+using testing::circle;
+using testing::window_circle;
 
 Camera front_camera() {
   Camera c;
@@ -60,8 +45,7 @@ SculptOp tunnel_op(double radius_px = 30) {
   SculptOp op;
   op.kind = SculptOp::Kind::kTunnel;
   op.camera = front_camera();
-  for (int i = 0; i < 40; ++i)
-    op.stroke.push_back(Vec2(320, 240) + radius_px * Vec2(std::cos(2 * M_PI * i / 40), std::sin(2 * M_PI * i / 40)));
+  op.stroke = window_circle(Vec2(320, 240), radius_px, 40);
   return op;
 }
 
@@ -127,8 +111,7 @@ TEST(SculptSession, ExtrusionAddsAValidBumpAndUndoes) {
   SculptOp op;
   op.kind = SculptOp::Kind::kExtrude;
   op.camera = front_camera();
-  for (int i = 0; i < 48; ++i)
-    op.stroke.push_back(Vec2(320, 240) + 18.0 * Vec2(std::cos(2 * M_PI * i / 48), std::sin(2 * M_PI * i / 48)));
+  op.stroke = window_circle(Vec2(320, 240), 18.0, 48);
   auto plane = extrusion_reference_plane(before, op.stroke, op.camera);
   ASSERT_TRUE(plane) << plane.message();
   // The silhouette: half an ellipse on the reference plane from one side of the base to the
