@@ -11,10 +11,15 @@
 // time from pen-up to the first presented frame that shows its result is printed and, with
 // --report, written with the UI thread's busy time per frame (docs/session.md, "Latency").
 //
+// The panel (Dear ImGui, engine/window_presenter.h; off with --no-panel) picks the tool mode,
+// the reference plane and its offset, and lambda; each change is journaled and applied like
+// the keys below. It is shown for live input, not while a log is replayed.
+//
 // Keys: 1/2/3 select the x/y/z plane (the view turns to face it), Up/Down move the selected plane
 // by 0.04, Ctrl+Z undo, Ctrl+Y redo, E toggles the mouse eraser, Esc quits. Left drag sketches;
 // right drag orbits the camera (arcball about the target).
 #include <GLFW/glfw3.h>
+#include <imgui.h>
 
 #include <algorithm>
 #include <chrono>
@@ -64,6 +69,7 @@ nlohmann::json summary(const std::vector<double>& v) {
 struct Options {
   std::string replay, screenshot, journal, report, size = "1280x800";
   double speed = 0.0;  // replay speed; 0: as fast as frames allow
+  bool no_panel = false;
 };
 
 std::pair<int, int> parse_size(const std::string& s) {
@@ -89,6 +95,7 @@ class WindowApp {
     wo.width = width_;
     wo.height = height_;
     wo.validation = ps::engine::validation_requested_by_environment();
+    wo.panel = !o_.no_panel;
     auto presenter = ps::engine::WindowPresenter::create(wo);
     if (!presenter) throw ps::app::CommandFailed("cannot open the window: " + presenter.message());
     win_ = std::move(*presenter);
@@ -233,7 +240,12 @@ class WindowApp {
       wait_for_events(tablet ? 0.004 : 0.05);
       const auto busy = Clock::now();
       const double t = t_origin + ms_between(t0, busy);
-      handle_keys(gw, t);
+      panel_t_ = t;
+      if (win_->panel_wants_keyboard()) {
+        need_redraw_ = true;  // typing into the panel: draw every frame
+      } else {
+        handle_keys(gw, t);
+      }
       if (tablet) {
         std::vector<ps::PenSample> samples;
         if (auto st = (*tablet)->poll(samples); st)
@@ -335,7 +347,12 @@ class WindowApp {
       x *= static_cast<double>(fw) / ww;
       y *= static_cast<double>(fh) / wh;
     }
-    const bool left = glfwGetMouseButton(gw, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    // A press over the panel is the panel's; a stroke or orbit already going on continues.
+    const bool over_panel = win_->panel_wants_mouse();
+    const bool left = glfwGetMouseButton(gw, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && (left_was_down_ || !over_panel);
+    const bool right_down = glfwGetMouseButton(gw, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS && (right_was_down_ || !over_panel);
+    if (!o_.no_panel && (x != last_x_ || y != last_y_ || left != left_was_down_ || right_down != right_was_down_))
+      need_redraw_ = true;  // the panel follows the pointer
     if (left || left_was_down_) {
       ps::PenSample s = ps::pointer_sample(t, x, y, left, left_was_down_);
       if (eraser_) s.tool = ps::Tool::kEraser;
@@ -343,7 +360,7 @@ class WindowApp {
     }
     left_was_down_ = left;
     // Arcball-style orbit with the right button.
-    const bool right = glfwGetMouseButton(gw, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    const bool right = right_down;
     if (right && right_was_down_ && (x != last_x_ || y != last_y_)) {
       ps::Camera cam = worker_->input().camera;
       const ps::Vec3 off = cam.eye - cam.target;
@@ -384,6 +401,8 @@ class WindowApp {
     if (fb != last_fb_) need_redraw_ = true;
     const auto now = Clock::now();
     if (!force && !need_redraw_ && ms_between(last_present_, now) < 250.0) return;
+    need_redraw_ = false;  // panel actions below ask for the next frame again
+    if (recorder_ && win_->begin_panel()) draw_panel();
     ps::Camera cam = worker_->input().camera;
     bool presented = false;
     if (fb.first > 0 && fb.second > 0) {
@@ -406,9 +425,60 @@ class WindowApp {
     }
     last_fb_ = fb;
     last_present_ = Clock::now();
-    need_redraw_ = false;
     busy_ms_.push_back(ms_between(busy_since, last_present_));
     work_ms_.push_back(busy_ms_.back() - (presented ? present_ms_.back() : 0.0));
+  }
+
+  // === The panel: tool mode, reference plane and offset, lambda; the session's state.
+  void draw_panel() {
+    const ps::InputState& in = worker_->input();
+    ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
+    ImGui::Begin("planesketch", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoFocusOnAppearing);
+    ImGui::TextUnformatted("tool");
+    static const char* const kModes[] = {"sketch", "sculpt", "cut", "tunnel", "smooth", "extrude"};
+    for (const char* m : kModes) {
+      if (ImGui::RadioButton(m, in.mode == m) && in.mode != m) act(panel_t_, ps::SetToolMode{m});
+      if (m != kModes[5]) ImGui::SameLine();
+    }
+    ImGui::Separator();
+    ImGui::TextUnformatted("reference plane");
+    for (int i = 0; i < static_cast<int>(in.planes.size()); ++i) {
+      const int axis = in.planes[static_cast<std::size_t>(i)].axis();
+      const std::string name = axis >= 0 ? std::string(1, "xyz"[axis]) : "plane " + std::to_string(i);
+      if (ImGui::RadioButton(name.c_str(), in.selected_plane == i) && in.selected_plane != i) {
+        act(panel_t_, ps::SelectPlane{i});
+        face_selected_plane(panel_t_);
+      }
+      ImGui::SameLine();
+      const std::string label = "offset##" + std::to_string(i);
+      ImGui::SetNextItemWidth(120.0f);
+      if (auto v = panel_value(label, in.planes[static_cast<std::size_t>(i)].offset, false, -10.0f, 10.0f))
+        act(panel_t_, ps::TranslatePlane{i, *v});
+    }
+    ImGui::Separator();
+    const auto lambda = in.parameters.find("lambda");
+    ImGui::SetNextItemWidth(180.0f);
+    if (auto v = panel_value("lambda", lambda != in.parameters.end() ? lambda->second : ps::SessionParams{}.lambda, true, 0.0f, 1.0f))
+      act(panel_t_, ps::SetParameter{"lambda", *v});
+    const auto& st = shown_->state;
+    ImGui::Text("%zu sections, %zu faces%s", st.sections.curves.size(), st.model.faces.size(),
+                worker_->caught_up() ? "" : ", rebuilding");
+    ImGui::End();
+  }
+
+  // A slider (or a drag field, ctrl+click to type) showing `current` unless the user is
+  // editing it; the new value once the edit ends (one journaled action per edit).
+  std::optional<double> panel_value(const std::string& label, double current, bool slider, float lo, float hi) {
+    auto& [value, editing] = panel_values_[label];
+    if (!editing) value = static_cast<float>(current);
+    if (slider) {
+      ImGui::SliderFloat(label.c_str(), &value, lo, hi, "%.2f");
+    } else {
+      ImGui::DragFloat(label.c_str(), &value, 0.01f, lo, hi, "%.3f");
+    }
+    editing = ImGui::IsItemActive();
+    if (ImGui::IsItemDeactivatedAfterEdit()) return static_cast<double>(value);
+    return std::nullopt;
   }
 
   void screenshot() {
@@ -478,6 +548,9 @@ class WindowApp {
   std::vector<Clock::time_point> pen_up_;  // per submitted stroke
   std::size_t presented_strokes_ = 0;      // strokes whose preview has been presented
   std::vector<double> preview_ms_, busy_ms_, work_ms_, present_ms_;
+  // === Panel
+  double panel_t_ = 0.0;  // log time of the frame's input (panel actions are journaled at it)
+  std::map<std::string, std::pair<float, bool>> panel_values_;  // value shown, being edited
 };
 
 void setup(CLI::App& root) {
@@ -488,6 +561,7 @@ void setup(CLI::App& root) {
   cmd->add_option("--journal", o->journal, "Where to write the session's stroke log (default: ~/.local/state/planesketch)");
   cmd->add_option("--report", o->report, "At exit, write pen-up to preview latencies and frame times (JSON)");
   cmd->add_option("--size", o->size, "Window size WIDTHxHEIGHT");
+  cmd->add_flag("--no-panel", o->no_panel, "No Dear ImGui panel over the canvas");
   cmd->add_option("--speed", o->speed, "Replay speed relative to the log's clock (0: as fast as frames allow)");
   cmd->callback([o] {
     if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
