@@ -1,7 +1,8 @@
 // The window's preview worker (app/preview_worker.h), headless: the session it builds on its
 // thread must be the synchronous SessionDriver's, bit for bit, however fast events arrive and
 // however many previews are superseded; every snapshot it publishes must be a state the
-// synchronous session passed through. Also part of the ThreadSanitizer run (scripts/test).
+// synchronous session passed through. PreviewWorkerTest.* is also part of the
+// ThreadSanitizer run (scripts/test; 54 s there).
 #include <gtest/gtest.h>
 
 #include <atomic>
