@@ -1,24 +1,40 @@
-// planesketch window [--replay LOG] [--screenshot FILE] [--journal FILE] [--size WxH]
+// planesketch window [--replay LOG] [--screenshot FILE] [--journal FILE] [--size WxH] [--report R.json]
 // The interactive window: GLFW + Vulkan swapchain (engine/window_presenter.h), pen input from
 // libinput when the seat allows it, else the mouse (pressure 1), every event journaled to a
-// stroke log as it happens (fsync per stroke, end marker on a clean exit) and applied through the same SessionDriver that
-// headless replay uses.
+// stroke log as it happens (fsync per stroke, end marker on a clean exit) and then applied
+// through the same SessionDriver that headless replay uses, which runs on a worker thread
+// (app/preview_worker.h): the UI thread keeps drawing and taking strokes while the model is
+// rebuilt, and shows the newest finished model.
+//
+// Frames are drawn when something changed (input, a new preview, a resize; at least every
+// 250 ms), so an idle window leaves both cores to the reconstruction. For every stroke the
+// time from pen-up to the first presented frame that shows its result is printed and, with
+// --report, written with the UI thread's busy time per frame (docs/session.md, "Latency").
+//
+// The panel (Dear ImGui, engine/window_presenter.h; off with --no-panel) picks the tool mode,
+// the reference plane and its offset, and lambda; each change is journaled and applied like
+// the keys below. It is shown for live input, not while a log is replayed.
 //
 // Keys: 1/2/3 select the x/y/z plane (the view turns to face it), Up/Down move the selected plane
 // by 0.04, Ctrl+Z undo, Ctrl+Y redo, E toggles the mouse eraser, Esc quits. Left drag sketches;
 // right drag orbits the camera (arcball about the target).
 #include <GLFW/glfw3.h>
+#include <imgui.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <thread>
 
 #include "app/commands.h"
 #include "app/journal.h"
-#include "app/session_driver.h"
+#include "app/preview_worker.h"
 #include "app/session_scene.h"
 #include "engine/image.h"
 #include "engine/renderer.h"
@@ -29,9 +45,31 @@
 
 namespace {
 
+using Clock = std::chrono::steady_clock;
+
+double ms_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// Nearest-rank percentile (q in (0, 1]) of `v`; 0 for an empty list.
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
+  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
+}
+
+nlohmann::json summary(const std::vector<double>& v) {
+  return {{"count", v.size()},
+          {"median", percentile(v, 0.5)},
+          {"p95", percentile(v, 0.95)},
+          {"max", v.empty() ? 0.0 : *std::max_element(v.begin(), v.end())}};
+}
+
 struct Options {
-  std::string replay, screenshot, journal, size = "1280x800";
+  std::string replay, screenshot, journal, report, size = "1280x800";
   double speed = 0.0;  // replay speed; 0: as fast as frames allow
+  bool no_panel = false;
 };
 
 std::pair<int, int> parse_size(const std::string& s) {
@@ -57,22 +95,53 @@ class WindowApp {
     wo.width = width_;
     wo.height = height_;
     wo.validation = ps::engine::validation_requested_by_environment();
+    wo.panel = !o_.no_panel;
     auto presenter = ps::engine::WindowPresenter::create(wo);
     if (!presenter) throw ps::app::CommandFailed("cannot open the window: " + presenter.message());
     win_ = std::move(*presenter);
+    // A finished preview wakes the UI thread from its wait for events.
+    worker_ = std::make_unique<ps::app::PreviewWorker>(ps::SessionParams{}, [] { glfwPostEmptyEvent(); });
 
     if (!o_.replay.empty()) {
       run_replay();
       // With a screenshot requested the run is a test: stop here. Otherwise keep the window
       // open for sketching on top of the replayed model.
-      if (!o_.screenshot.empty() || win_->should_close()) return;
+      if (!o_.screenshot.empty() || win_->should_close()) {
+        finish_report();
+        return;
+      }
     } else {
       start_session();
     }
     run_live();
+    finish_report();
   }
 
  private:
+  // Replayed events reach the worker through this sink, which also keeps what the UI shows of
+  // them: the stroke in progress and the pen-up time of each stroke.
+  class ReplayFeed : public ps::EventSink {
+   public:
+    explicit ReplayFeed(WindowApp& app) : app_(app) {}
+    void on_header(const ps::LogHeader& h) override { app_.worker_->on_header(h); }
+    void on_pen_sample(const ps::PenSample& s) override {
+      app_.worker_->on_pen_sample(s);
+      // The replayer groups strokes too and calls on_stroke; this grouper only tells what to draw.
+      if (!grouper_.add(s) && grouper_.in_stroke()) app_.extend_live(s);
+    }
+    void on_action(const ps::TimedEvent& e) override {
+      app_.worker_->on_action(e);
+      app_.need_redraw_ = true;
+    }
+    void on_stroke(const ps::Stroke& stroke) override {
+      app_.submit_stroke(stroke, app_.replay_pen_up(stroke));
+    }
+
+   private:
+    WindowApp& app_;
+    ps::StrokeGrouper grouper_;
+  };
+
   // === Replay through the window: the same driver, paced by frames (or real time with --speed).
   void run_replay() {
     std::vector<std::string> warnings;
@@ -81,21 +150,40 @@ class WindowApp {
     for (const auto& w : warnings) std::cerr << "planesketch: warning: " << w << "\n";
     replayed_ = *log;
     ps::StrokeReplayer replayer(std::move(*log));
-    const auto t0 = std::chrono::steady_clock::now();
+    ReplayFeed feed(*this);
+    replay_t0_ = Clock::now();
     while (!win_->should_close() && !replayer.done()) {
-      win_->poll_events();
+      wait_for_events(o_.speed > 0.0 ? 0.004 : 0.0);
+      const auto busy = Clock::now();
       if (o_.speed > 0.0) {
-        const double elapsed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        replayer.replay_until(elapsed * o_.speed, driver_);
+        replayer.replay_until(ms_between(replay_t0_, Clock::now()) * o_.speed, feed);
       } else {
-        replayer.replay_until(replayer.clock_ms() + 2000.0, driver_);  // two log seconds per frame
+        replayer.replay_until(replayer.clock_ms() + 2000.0, feed);  // two log seconds per frame
       }
-      present(driver_.input().camera);
+      frame(busy);
     }
-    if (replayer.done()) replayer.replay_all(driver_);  // delivers the end of the log
-    for (const auto& m : driver_.messages()) std::cerr << "planesketch: t=" << m.t << " ms: " << m.text << "\n";
-    present(driver_.input().camera);
+    if (replayer.done()) replayer.replay_all(feed);  // delivers the end of the log
+    // Keep drawing until the worker has caught up, so the last strokes' previews are presented.
+    while (!win_->should_close() && !worker_->caught_up()) {
+      wait_for_events(0.1);
+      frame(Clock::now());
+    }
+    worker_->wait_idle();
+    frame(Clock::now(), true);
+    const auto snap = worker_->latest();
+    for (const auto& m : snap->messages) std::cerr << "planesketch: t=" << m.t << " ms: " << m.text << "\n";
+    seen_messages_ = snap->messages.size();
     if (!o_.screenshot.empty()) screenshot();
+  }
+
+  // The wall-clock pen-up of a replayed stroke: with --speed the time the log's clock maps to
+  // (so frame pacing counts against the latency, as it does for a live pen), else its delivery.
+  Clock::time_point replay_pen_up(const ps::Stroke& stroke) const {
+    const auto now = Clock::now();
+    if (o_.speed <= 0.0 || stroke.samples.empty()) return now;
+    const auto at = replay_t0_ + std::chrono::duration_cast<Clock::duration>(
+                                     std::chrono::duration<double, std::milli>(stroke.samples.back().t / o_.speed));
+    return std::min(at, now);
   }
 
   // A new session: the default header (three basic planes, a z-up view).
@@ -108,7 +196,7 @@ class WindowApp {
     header.camera.up = ps::Vec3::UnitZ();
     header.camera.eye = ps::Vec3(3.2, -4.2, 2.4);
     header.generator = "planesketch window";
-    driver_.on_header(header);
+    worker_->on_header(header);
   }
 
   // === Live input (journaled)
@@ -116,10 +204,10 @@ class WindowApp {
     ps::LogHeader header;
     header.viewport_width = width_;
     header.viewport_height = height_;
-    header.camera = driver_.input().camera;
+    header.camera = worker_->input().camera;
     header.camera.width = width_;
     header.camera.height = height_;
-    header.planes = driver_.input().planes;
+    header.planes = worker_->input().planes;
     header.generator = "planesketch window";
     if (!replayed_)  // the next start offers to recover a session that died
       if (const auto j = ps::app::newest_unfinished_journal(ps::app::journal_dir()))
@@ -144,42 +232,70 @@ class WindowApp {
     auto tablet = ps::LibinputTabletReader::open(mapping);
     if (!tablet) std::cerr << "planesketch: pen: " << tablet.message() << "; using the mouse (pressure 1)\n";
 
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     GLFWwindow* gw = win_->window();
+    need_redraw_ = true;
     while (!win_->should_close()) {
-      win_->poll_events();
-      const double t = t_origin + std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      handle_keys(gw, t);
+      // A tablet is polled, not an event source: wake at its rate; the mouse and the worker wake us.
+      wait_for_events(tablet ? 0.004 : 0.05);
+      const auto busy = Clock::now();
+      const double t = t_origin + ms_between(t0, busy);
+      panel_t_ = t;
+      if (win_->panel_wants_keyboard()) {
+        need_redraw_ = true;  // typing into the panel: draw every frame
+      } else {
+        handle_keys(gw, t);
+      }
       if (tablet) {
         std::vector<ps::PenSample> samples;
         if (auto st = (*tablet)->poll(samples); st)
           for (const auto& s : samples) pen(s);
       }
       handle_mouse(gw, t);
-      present(driver_.input().camera);
+      frame(busy);
     }
     // A clean exit: the end marker tells crash recovery this session needs none.
     if (auto st = recorder_->finish(); !st) std::cerr << "planesketch: journal: " << st.message() << "\n";
   }
 
+  // Returns at once when a frame is due, else waits for input or a finished preview (at most
+  // `timeout_s`; 0 polls).
+  void wait_for_events(double timeout_s) {
+    if (timeout_s <= 0.0 || need_redraw_ || worker_->latest() != shown_) {
+      win_->poll_events();
+    } else {
+      glfwWaitEventsTimeout(timeout_s);
+    }
+  }
+
   void act(double t, const ps::Event& e) {
     if (recorder_) (void)recorder_->record(t, e);  // journal first: nothing is lost on a crash
-    ps::TimedEvent te{t, 0, e};
-    driver_.on_action(te);
+    worker_->on_action(ps::TimedEvent{t, 0, e});
+    need_redraw_ = true;
   }
 
   void pen(const ps::PenSample& s) {
-    if (recorder_) (void)recorder_->record(s);
-    driver_.on_pen_sample(s);
+    if (recorder_) (void)recorder_->record(s);  // fsync at pen-up, before the stroke is applied
+    worker_->on_pen_sample(s);
     if (auto stroke = grouper_.add(s)) {
-      driver_.on_stroke(*stroke);
-      for (std::size_t i = seen_messages_; i < driver_.messages().size(); ++i)
-        std::cerr << "planesketch: " << driver_.messages()[i].text << "\n";
-      seen_messages_ = driver_.messages().size();
-      live_.clear();
+      submit_stroke(*stroke, Clock::now());
     } else if (grouper_.in_stroke()) {
-      if (auto p = driver_.input().lift(s.x, s.y)) live_.push_back(*p);
+      extend_live(s);
     }
+  }
+
+  // The stroke goes to the worker; its pen-up time waits for the frame that shows its result.
+  void submit_stroke(const ps::Stroke& stroke, Clock::time_point pen_up) {
+    worker_->on_stroke(stroke);
+    pen_up_.push_back(pen_up);
+    live_.clear();
+    need_redraw_ = true;
+  }
+
+  // The stroke in progress, lifted onto the selected plane as the driver will lift it.
+  void extend_live(const ps::PenSample& s) {
+    if (auto p = worker_->input().lift(s.x, s.y)) live_.push_back(*p);
+    need_redraw_ = true;
   }
 
   void handle_keys(GLFWwindow* gw, double t) {
@@ -195,10 +311,10 @@ class WindowApp {
         act(t, ps::SelectPlane{k});
         face_selected_plane(t);
       }
-    const int sel = driver_.input().selected_plane;
+    const int sel = worker_->input().selected_plane;
     if (pressed(GLFW_KEY_UP) || pressed(GLFW_KEY_DOWN)) {
       const double step = glfwGetKey(gw, GLFW_KEY_UP) == GLFW_PRESS ? 0.04 : -0.04;
-      const auto plane = driver_.input().current_plane();
+      const auto plane = worker_->input().current_plane();
       if (plane) act(t, ps::TranslatePlane{sel, plane->offset + step});
     }
     if (ctrl && pressed(GLFW_KEY_Z)) act(t, ps::Undo{});
@@ -209,9 +325,9 @@ class WindowApp {
 
   // Turn the view to face the selected plane (3.2.1), keeping the distance to the target.
   void face_selected_plane(double t) {
-    const auto plane = driver_.input().current_plane();
+    const auto plane = worker_->input().current_plane();
     if (!plane) return;
-    ps::Camera cam = driver_.input().camera;
+    ps::Camera cam = worker_->input().camera;
     const double dist = (cam.eye - cam.target).norm();
     ps::Vec3 n = plane->normal;
     if (n.dot(cam.eye - cam.target) < 0.0) n = -n;
@@ -231,7 +347,12 @@ class WindowApp {
       x *= static_cast<double>(fw) / ww;
       y *= static_cast<double>(fh) / wh;
     }
-    const bool left = glfwGetMouseButton(gw, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    // A press over the panel is the panel's; a stroke or orbit already going on continues.
+    const bool over_panel = win_->panel_wants_mouse();
+    const bool left = glfwGetMouseButton(gw, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && (left_was_down_ || !over_panel);
+    const bool right_down = glfwGetMouseButton(gw, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS && (right_was_down_ || !over_panel);
+    if (!o_.no_panel && (x != last_x_ || y != last_y_ || left != left_was_down_ || right_down != right_was_down_))
+      need_redraw_ = true;  // the panel follows the pointer
     if (left || left_was_down_) {
       ps::PenSample s = ps::pointer_sample(t, x, y, left, left_was_down_);
       if (eraser_) s.tool = ps::Tool::kEraser;
@@ -239,9 +360,9 @@ class WindowApp {
     }
     left_was_down_ = left;
     // Arcball-style orbit with the right button.
-    const bool right = glfwGetMouseButton(gw, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-    if (right && right_was_down_) {
-      ps::Camera cam = driver_.input().camera;
+    const bool right = right_down;
+    if (right && right_was_down_ && (x != last_x_ || y != last_y_)) {
+      ps::Camera cam = worker_->input().camera;
       const ps::Vec3 off = cam.eye - cam.target;
       const double dx = (x - last_x_) * 0.01, dy = (y - last_y_) * 0.01;
       ps::Vec3 o = rotate(off, cam.up.normalized(), -dx);
@@ -249,7 +370,8 @@ class WindowApp {
       o = rotate(o, side, -dy);
       cam.eye = cam.target + o;
       orbit_cam_ = cam;
-      driver_.on_action(ps::TimedEvent{t, 0, ps::CameraChange{cam}});
+      worker_->on_action(ps::TimedEvent{t, 0, ps::CameraChange{cam}});
+      need_redraw_ = true;
     }
     if (!right && right_was_down_ && orbit_cam_) {
       if (recorder_) (void)recorder_->record(t, ps::CameraChange{*orbit_cam_});
@@ -260,18 +382,108 @@ class WindowApp {
     last_y_ = y;
   }
 
-  void present(ps::Camera cam) {
-    auto [fw, fh] = win_->framebuffer_size();
-    if (fw <= 0 || fh <= 0) return;
-    cam.width = fw;
-    cam.height = fh;
-    if (auto st = win_->present(ps::app::session_scene(driver_, cam, live_)); !st)
-      std::cerr << "planesketch: " << st.message() << "\n";
+  // === One frame: the newest preview, presented when anything changed. `busy_since` is when
+  // the UI thread stopped waiting for events; the time from there to the end of the frame is
+  // what the UI thread was busy (input, journal, hand-over to the worker, scene, present).
+  void frame(Clock::time_point busy_since, bool force = false) {
+    worker_->check();
+    const auto snap = worker_->latest();
+    if (snap != shown_) {
+      shown_ = snap;
+      need_redraw_ = true;
+      if (recorder_) {  // live: say at once why a stroke was refused
+        for (std::size_t i = seen_messages_; i < snap->messages.size(); ++i)
+          std::cerr << "planesketch: " << snap->messages[i].text << "\n";
+        seen_messages_ = snap->messages.size();
+      }
+    }
+    const auto fb = win_->framebuffer_size();
+    if (fb != last_fb_) need_redraw_ = true;
+    const auto now = Clock::now();
+    if (!force && !need_redraw_ && ms_between(last_present_, now) < 250.0) return;
+    need_redraw_ = false;  // panel actions below ask for the next frame again
+    if (recorder_ && win_->begin_panel()) draw_panel();
+    ps::Camera cam = worker_->input().camera;
+    bool presented = false;
+    if (fb.first > 0 && fb.second > 0) {
+      cam.width = fb.first;
+      cam.height = fb.second;
+      const auto t_present = Clock::now();
+      if (auto st = win_->present(ps::app::session_scene(snap->state, worker_->input(), cam, live_)); !st)
+        std::cerr << "planesketch: " << st.message() << "\n";
+      const auto t_done = Clock::now();
+      present_ms_.push_back(ms_between(t_present, t_done));
+      presented = true;
+      // Strokes whose result this frame shows for the first time.
+      for (std::size_t k = presented_strokes_; k < snap->strokes_applied && k < pen_up_.size(); ++k) {
+        const double ms = ms_between(pen_up_[k], t_done);
+        preview_ms_.push_back(ms);
+        std::cerr << "planesketch: stroke " << k + 1 << ": preview presented " << std::lround(ms)
+                  << " ms after pen-up\n";
+      }
+      presented_strokes_ = std::max(presented_strokes_, snap->strokes_applied);
+    }
+    last_fb_ = fb;
+    last_present_ = Clock::now();
+    busy_ms_.push_back(ms_between(busy_since, last_present_));
+    work_ms_.push_back(busy_ms_.back() - (presented ? present_ms_.back() : 0.0));
+  }
+
+  // === The panel: tool mode, reference plane and offset, lambda; the session's state.
+  void draw_panel() {
+    const ps::InputState& in = worker_->input();
+    ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
+    ImGui::Begin("planesketch", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoFocusOnAppearing);
+    ImGui::TextUnformatted("tool");
+    static const char* const kModes[] = {"sketch", "sculpt", "cut", "tunnel", "smooth", "extrude"};
+    for (const char* m : kModes) {
+      if (ImGui::RadioButton(m, in.mode == m) && in.mode != m) act(panel_t_, ps::SetToolMode{m});
+      if (m != kModes[5]) ImGui::SameLine();
+    }
+    ImGui::Separator();
+    ImGui::TextUnformatted("reference plane");
+    for (int i = 0; i < static_cast<int>(in.planes.size()); ++i) {
+      const int axis = in.planes[static_cast<std::size_t>(i)].axis();
+      const std::string name = axis >= 0 ? std::string(1, "xyz"[axis]) : "plane " + std::to_string(i);
+      if (ImGui::RadioButton(name.c_str(), in.selected_plane == i) && in.selected_plane != i) {
+        act(panel_t_, ps::SelectPlane{i});
+        face_selected_plane(panel_t_);
+      }
+      ImGui::SameLine();
+      const std::string label = "offset##" + std::to_string(i);
+      ImGui::SetNextItemWidth(120.0f);
+      if (auto v = panel_value(label, in.planes[static_cast<std::size_t>(i)].offset, false, -10.0f, 10.0f))
+        act(panel_t_, ps::TranslatePlane{i, *v});
+    }
+    ImGui::Separator();
+    const auto lambda = in.parameters.find("lambda");
+    ImGui::SetNextItemWidth(180.0f);
+    if (auto v = panel_value("lambda", lambda != in.parameters.end() ? lambda->second : ps::SessionParams{}.lambda, true, 0.0f, 1.0f))
+      act(panel_t_, ps::SetParameter{"lambda", *v});
+    const auto& st = shown_->state;
+    ImGui::Text("%zu sections, %zu faces%s", st.sections.curves.size(), st.model.faces.size(),
+                worker_->caught_up() ? "" : ", rebuilding");
+    ImGui::End();
+  }
+
+  // A slider (or a drag field, ctrl+click to type) showing `current` unless the user is
+  // editing it; the new value once the edit ends (one journaled action per edit).
+  std::optional<double> panel_value(const std::string& label, double current, bool slider, float lo, float hi) {
+    auto& [value, editing] = panel_values_[label];
+    if (!editing) value = static_cast<float>(current);
+    if (slider) {
+      ImGui::SliderFloat(label.c_str(), &value, lo, hi, "%.2f");
+    } else {
+      ImGui::DragFloat(label.c_str(), &value, 0.01f, lo, hi, "%.3f");
+    }
+    editing = ImGui::IsItemActive();
+    if (ImGui::IsItemDeactivatedAfterEdit()) return static_cast<double>(value);
+    return std::nullopt;
   }
 
   void screenshot() {
     auto [fw, fh] = win_->framebuffer_size();
-    ps::Camera cam = driver_.input().camera;
+    ps::Camera cam = worker_->input().camera;
     cam.width = fw > 0 ? fw : width_;
     cam.height = fh > 0 ? fh : height_;
     ps::engine::RendererOptions ro;
@@ -279,15 +491,47 @@ class WindowApp {
     ro.height = cam.height;
     auto r = ps::engine::create_offscreen_renderer(ro);
     if (!r) throw ps::app::CommandFailed("screenshot: " + r.message());
-    auto img = (*r)->render(ps::app::session_scene(driver_, cam));
+    auto img = (*r)->render(ps::app::session_scene(worker_->latest()->state, worker_->input(), cam));
     if (!img) throw ps::app::CommandFailed("screenshot: " + img.message());
     if (auto st = ps::engine::write_png(o_.screenshot, *img); !st) throw ps::app::CommandFailed(st.message());
+  }
+
+  // The latency summary on stderr and, with --report, the figures as JSON.
+  void finish_report() {
+    const auto snap = worker_->latest();
+    std::cerr << "planesketch: pen-up to presented preview over " << preview_ms_.size() << " strokes: median "
+              << std::lround(percentile(preview_ms_, 0.5)) << " ms, p95 " << std::lround(percentile(preview_ms_, 0.95))
+              << " ms; UI thread busy per frame: max " << std::lround(percentile(busy_ms_, 1.0)) << " ms, p95 "
+              << std::lround(percentile(busy_ms_, 0.95)) << " ms over " << busy_ms_.size() << " frames (outside present: max "
+              << std::lround(percentile(work_ms_, 1.0)) << " ms); "
+              << worker_->superseded() << " superseded previews\n";
+    if (o_.report.empty()) return;
+    nlohmann::json j;
+    j["device"] = win_->device_name();
+    j["validation_messages"] = win_->validation_messages();
+    j["frames_presented"] = win_->frames_presented();
+    j["sections"] = snap->state.sections.curves.size();
+    j["faces"] = snap->state.model.faces.size();
+    j["strokes"] = pen_up_.size();
+    j["preview_latency_ms"] = preview_ms_;
+    j["preview_latency"] = summary(preview_ms_);
+    j["rebuild_ms"] = snap->rebuild_ms;
+    j["rebuild"] = summary(snap->rebuild_ms);
+    j["ui_busy_per_frame"] = summary(busy_ms_);
+    j["ui_work_per_frame"] = summary(work_ms_);  // busy minus present: input, journal, hand-over, scene
+    j["present_ms"] = summary(present_ms_);
+    j["previews_published"] = worker_->published();
+    j["previews_superseded"] = worker_->superseded();
+    std::ofstream f(o_.report);
+    f << j.dump(2) << "\n";
+    if (!f) throw ps::app::CommandFailed(o_.report + ": cannot write report");
   }
 
   Options o_;
   int width_, height_;
   std::unique_ptr<ps::engine::WindowPresenter> win_;
-  ps::app::SessionDriver driver_;
+  std::unique_ptr<ps::app::PreviewWorker> worker_;  // after win_: stops before GLFW ends
+  std::shared_ptr<const ps::app::PreviewSnapshot> shown_;
   std::optional<ps::StrokeRecorder> recorder_;
   std::optional<ps::StrokeLog> replayed_;
   ps::StrokeGrouper grouper_;
@@ -297,6 +541,16 @@ class WindowApp {
   bool left_was_down_ = false, right_was_down_ = false, eraser_ = false;
   double last_x_ = 0, last_y_ = 0;
   std::optional<ps::Camera> orbit_cam_;
+  // === Frame pacing and latency figures
+  bool need_redraw_ = true;
+  std::pair<int, int> last_fb_{0, 0};
+  Clock::time_point last_present_{}, replay_t0_{};
+  std::vector<Clock::time_point> pen_up_;  // per submitted stroke
+  std::size_t presented_strokes_ = 0;      // strokes whose preview has been presented
+  std::vector<double> preview_ms_, busy_ms_, work_ms_, present_ms_;
+  // === Panel
+  double panel_t_ = 0.0;  // log time of the frame's input (panel actions are journaled at it)
+  std::map<std::string, std::pair<float, bool>> panel_values_;  // value shown, being edited
 };
 
 void setup(CLI::App& root) {
@@ -305,7 +559,9 @@ void setup(CLI::App& root) {
   cmd->add_option("--replay", o->replay, "Drive the window from a stroke log");
   cmd->add_option("--screenshot", o->screenshot, "After --replay, write the final view to this PNG and exit");
   cmd->add_option("--journal", o->journal, "Where to write the session's stroke log (default: ~/.local/state/planesketch)");
+  cmd->add_option("--report", o->report, "At exit, write pen-up to preview latencies and frame times (JSON)");
   cmd->add_option("--size", o->size, "Window size WIDTHxHEIGHT");
+  cmd->add_flag("--no-panel", o->no_panel, "No Dear ImGui panel over the canvas");
   cmd->add_option("--speed", o->speed, "Replay speed relative to the log's clock (0: as fast as frames allow)");
   cmd->callback([o] {
     if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))

@@ -5,8 +5,7 @@
 
 namespace ps::app {
 
-Box3 session_box(const SessionDriver& d) {
-  const auto& st = d.session().state();
+Box3 session_box(const SessionState& st) {
   Box3 box = bounding_box(st.model.vertices);
   for (const auto& p : st.sewn.all_points()) box.extend(p);
   if (box.empty()) {
@@ -17,8 +16,12 @@ Box3 session_box(const SessionDriver& d) {
 }
 
 Camera framed_camera(const SessionDriver& d, int width, int height) {
-  const Box3 box = session_box(d);
-  Camera cam = d.initial_camera();
+  return framed_camera(d.session().state(), d.initial_camera(), width, height);
+}
+
+Camera framed_camera(const SessionState& state, const Camera& initial_camera, int width, int height) {
+  const Box3 box = session_box(state);
+  Camera cam = initial_camera;
   cam.width = width;
   cam.height = height;
   const Vec3 dir = (cam.eye - cam.target).normalized();
@@ -33,16 +36,20 @@ Camera framed_camera(const SessionDriver& d, int width, int height) {
 
 engine::Scene session_scene(const SessionDriver& d, const Camera& camera,
                             const std::vector<Vec3>& stroke_in_progress) {
+  return session_scene(d.session().state(), d.input(), camera, stroke_in_progress);
+}
+
+engine::Scene session_scene(const SessionState& st, const InputState& input, const Camera& camera,
+                            const std::vector<Vec3>& stroke_in_progress) {
   using namespace ps::engine;
   Scene scene;
   scene.camera = camera;
-  const auto& st = d.session().state();
-  const Box3 box = session_box(d);
+  const Box3 box = session_box(st);
   const Vec3 c = box.center();
   const double half = std::max(0.75 * box.size().maxCoeff(), 0.5);
   static const Rgba colors[3] = {{0.90f, 0.25f, 0.25f, 0.16f}, {0.25f, 0.75f, 0.30f, 0.16f},
                                  {0.25f, 0.40f, 0.95f, 0.16f}};
-  const auto& planes = d.input().planes;
+  const auto& planes = input.planes;
   for (std::size_t i = 0; i < planes.size(); ++i) {
     PlaneVisual pv;
     pv.plane = planes[i];
@@ -50,7 +57,7 @@ engine::Scene session_scene(const SessionDriver& d, const Camera& camera,
     pv.half_size = half;
     const int axis = planes[i].axis();
     pv.color = colors[axis >= 0 ? axis : static_cast<int>(i % 3)];
-    pv.selected = static_cast<int>(i) == d.input().selected_plane;
+    pv.selected = static_cast<int>(i) == input.selected_plane;
     scene.planes.push_back(pv);
   }
   for (const auto& cs : st.sewn.curves) {

@@ -9,14 +9,21 @@
 
 namespace ps::app {
 
-// The scene for `d` seen through `camera` (its width/height give the image size).
+// The scene for session state `state` with the planes and selection of `input`, seen through
+// `camera` (its width/height give the image size). The window draws published snapshots of a
+// session running on another thread (app/preview_worker.h), hence values, not the driver.
+engine::Scene session_scene(const SessionState& state, const InputState& input, const Camera& camera,
+                            const std::vector<Vec3>& stroke_in_progress = {});
+// The same for the session a driver holds.
 engine::Scene session_scene(const SessionDriver& d, const Camera& camera,
                             const std::vector<Vec3>& stroke_in_progress = {});
 
-// A camera looking from the session's initial viewing direction, framed on the model and curves.
+// A camera looking from `initial_camera`'s viewing direction, framed on the model and curves.
+Camera framed_camera(const SessionState& state, const Camera& initial_camera, int width, int height);
+// The same from the driver's session and initial camera (the log header's).
 Camera framed_camera(const SessionDriver& d, int width, int height);
 
 // Bounding box of the model and curves (a unit box around the origin when empty).
-Box3 session_box(const SessionDriver& d);
+Box3 session_box(const SessionState& state);
 
 }  // namespace ps::app

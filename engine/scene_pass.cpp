@@ -306,16 +306,10 @@ Result<std::unique_ptr<ScenePass>> ScenePass::create(const vk::Context& ctx, VkE
   PS_VK_CHECK(vkCreatePipelineLayout(dev, &plci, nullptr, &pl), "vkCreatePipelineLayout");
   p->pipeline_layout_ = vk::PipelineLayout(dev, pl);
 
-  VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT, 2};
-  VkDescriptorPoolCreateInfo dpci{};
-  dpci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  dpci.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
-  dpci.maxSets = 1;
-  dpci.poolSizeCount = 1;
-  dpci.pPoolSizes = &pool_size;
-  VkDescriptorPool dp = VK_NULL_HANDLE;
-  PS_VK_CHECK(vkCreateDescriptorPool(dev, &dpci, nullptr, &dp), "vkCreateDescriptorPool");
-  p->descriptor_pool_ = vk::DescriptorPool(dev, dp);
+  auto pool = ctx.create_descriptor_pool(VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT, 2, 1);
+  if (!pool) return pool.status();
+  p->descriptor_pool_ = std::move(*pool);
+  const VkDescriptorPool dp = p->descriptor_pool_.get();
   VkDescriptorSetAllocateInfo dsai{};
   dsai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
   dsai.descriptorPool = dp;

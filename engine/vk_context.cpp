@@ -518,6 +518,21 @@ Result<Semaphore> Context::create_semaphore() const {
   return Semaphore(device(), s);
 }
 
+Result<DescriptorPool> Context::create_descriptor_pool(VkDescriptorType type, uint32_t descriptors,
+                                                       uint32_t max_sets) const {
+  VkDescriptorPoolSize size{type, descriptors};
+  VkDescriptorPoolCreateInfo dpci{};
+  dpci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+  dpci.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  dpci.maxSets = max_sets;
+  dpci.poolSizeCount = 1;
+  dpci.pPoolSizes = &size;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  if (const VkResult r = vkCreateDescriptorPool(device(), &dpci, nullptr, &pool); r != VK_SUCCESS)
+    return Result<DescriptorPool>::error("vkCreateDescriptorPool failed: " + result_name(r));
+  return DescriptorPool(device(), pool);
+}
+
 Status Context::submit_and_wait(VkCommandBuffer cmd, VkFence fence) const {
   PS_VK_TRY(vkResetFences(device(), 1, &fence), "vkResetFences");
   VkSubmitInfo si{};

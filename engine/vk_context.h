@@ -85,6 +85,10 @@ class Context {
   Result<CommandBuffer> allocate_command_buffer() const;
   Result<Fence> create_fence(bool signalled) const;
   Result<Semaphore> create_semaphore() const;
+  // A pool of `max_sets` sets holding up to `descriptors` descriptors of `type`; sets can be
+  // freed one by one (FREE_DESCRIPTOR_SET).
+  Result<DescriptorPool> create_descriptor_pool(VkDescriptorType type, uint32_t descriptors,
+                                                uint32_t max_sets) const;
   // Submit a command buffer and wait for it (simple, for one-off work and the synchronous
   // offscreen path).
   Status submit_and_wait(VkCommandBuffer cmd, VkFence fence) const;

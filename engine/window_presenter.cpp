@@ -4,6 +4,10 @@
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_vulkan.h>
+
 #include <algorithm>
 #include <array>
 #include <vector>
@@ -53,10 +57,19 @@ struct WindowPresenter::Impl {
   vk::Fence frame_done;
   vk::Semaphore image_acquired;
 
+  // === The panel (options.panel): ImGui's render pass over the swapchain image.
+  vk::DescriptorPool panel_pool;
+  vk::RenderPass panel_pass;
+  VkFormat panel_format = VK_FORMAT_UNDEFINED;
+  bool imgui_context = false, imgui_glfw = false, imgui_vulkan = false;
+  bool panel_frame = false;  // begin_panel() was called for the coming present()
+
   struct Swapchain {
     vk::Swapchain handle;
     std::vector<VkImage> images;  // owned by the swapchain
     std::vector<vk::Semaphore> render_done;  // one per image, waited by its present
+    std::vector<vk::ImageView> views;  // with the panel: one per image
+    std::vector<vk::Framebuffer> framebuffers;
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkExtent2D extent{0, 0};
   } swapchain;
@@ -66,11 +79,131 @@ struct WindowPresenter::Impl {
 
   ~Impl() {
     if (ctx) vkDeviceWaitIdle(ctx->device());
+    if (imgui_vulkan) ImGui_ImplVulkan_Shutdown();
+    if (imgui_glfw) ImGui_ImplGlfw_Shutdown();
+    if (imgui_context) ImGui::DestroyContext();
   }
 
   Status create_swapchain(VkExtent2D fb);
+  Status create_panel(VkFormat format, uint32_t min_images, uint32_t images);
+  Status create_panel_framebuffers(Swapchain& s);
   Status present(Scene scene);
 };
+
+// The render pass the panel draws in: the blitted scene is loaded (the image comes from the
+// blit in TRANSFER_DST layout) and left ready to present. ImGui's pipeline is made for it.
+Status WindowPresenter::Impl::create_panel(VkFormat format, uint32_t min_images, uint32_t images) {
+  const VkDevice dev = ctx->device();
+  if (imgui_vulkan) {
+    if (format != panel_format) return Status::error("the window surface format changed under the panel");
+    ImGui_ImplVulkan_SetMinImageCount(std::max<uint32_t>(min_images, 2));
+    return Status::ok();
+  }
+  VkAttachmentDescription color{};
+  color.format = format;
+  color.samples = VK_SAMPLE_COUNT_1_BIT;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  color.initialLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  color.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+  VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription sub{};
+  sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  sub.colorAttachmentCount = 1;
+  sub.pColorAttachments = &ref;
+  VkSubpassDependency dep{};
+  dep.srcSubpass = VK_SUBPASS_EXTERNAL;
+  dep.dstSubpass = 0;
+  dep.srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  dep.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  dep.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  VkRenderPassCreateInfo rpi{};
+  rpi.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
+  rpi.attachmentCount = 1;
+  rpi.pAttachments = &color;
+  rpi.subpassCount = 1;
+  rpi.pSubpasses = &sub;
+  rpi.dependencyCount = 1;
+  rpi.pDependencies = &dep;
+  VkRenderPass rp = VK_NULL_HANDLE;
+  if (const VkResult r = vkCreateRenderPass(dev, &rpi, nullptr, &rp); r != VK_SUCCESS)
+    return Status::error("vkCreateRenderPass (panel) failed: " + vk::result_name(r));
+  panel_pass = vk::RenderPass(dev, rp);
+  panel_format = format;
+
+  // ImGui needs one combined image sampler (its font); a few spare sets.
+  auto pool = ctx->create_descriptor_pool(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4, 4);
+  if (!pool) return pool.status();
+  panel_pool = std::move(*pool);
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  imgui_context = true;
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the working directory
+  ImGui::StyleColorsLight();
+  if (!ImGui_ImplGlfw_InitForVulkan(window.get(), true)) return Status::error("ImGui's GLFW backend failed to start");
+  imgui_glfw = true;
+  ImGui_ImplVulkan_InitInfo ii{};
+  ii.Instance = ctx->instance();
+  ii.PhysicalDevice = ctx->physical_device();
+  ii.Device = dev;
+  ii.QueueFamily = ctx->queue_family();
+  ii.Queue = ctx->queue();
+  ii.DescriptorPool = panel_pool.get();
+  ii.Subpass = 0;
+  ii.MinImageCount = std::max<uint32_t>(min_images, 2);
+  ii.ImageCount = std::max(images, ii.MinImageCount);
+  ii.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+  if (!ImGui_ImplVulkan_Init(&ii, rp)) return Status::error("ImGui's Vulkan backend failed to start");
+  imgui_vulkan = true;
+
+  // === The font atlas, uploaded once.
+  auto cmd_buf = ctx->allocate_command_buffer();
+  if (!cmd_buf) return cmd_buf.status();
+  auto fence = ctx->create_fence(false);
+  if (!fence) return fence.status();
+  VkCommandBufferBeginInfo bi{};
+  bi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  vkBeginCommandBuffer(cmd_buf->get(), &bi);
+  if (!ImGui_ImplVulkan_CreateFontsTexture(cmd_buf->get())) return Status::error("ImGui's font upload failed");
+  vkEndCommandBuffer(cmd_buf->get());
+  if (auto st = ctx->submit_and_wait(cmd_buf->get(), fence->get()); !st) return st;
+  ImGui_ImplVulkan_DestroyFontUploadObjects();
+  return Status::ok();
+}
+
+Status WindowPresenter::Impl::create_panel_framebuffers(Swapchain& s) {
+  const VkDevice dev = ctx->device();
+  for (VkImage image : s.images) {
+    VkImageViewCreateInfo vi{};
+    vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+    vi.image = image;
+    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vi.format = s.format;
+    vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkImageView view = VK_NULL_HANDLE;
+    if (const VkResult r = vkCreateImageView(dev, &vi, nullptr, &view); r != VK_SUCCESS)
+      return Status::error("vkCreateImageView (panel) failed: " + vk::result_name(r));
+    s.views.emplace_back(dev, view);
+    VkFramebufferCreateInfo fi{};
+    fi.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+    fi.renderPass = panel_pass.get();
+    fi.attachmentCount = 1;
+    fi.pAttachments = &view;
+    fi.width = s.extent.width;
+    fi.height = s.extent.height;
+    fi.layers = 1;
+    VkFramebuffer fb = VK_NULL_HANDLE;
+    if (const VkResult r = vkCreateFramebuffer(dev, &fi, nullptr, &fb); r != VK_SUCCESS)
+      return Status::error("vkCreateFramebuffer (panel) failed: " + vk::result_name(r));
+    s.framebuffers.emplace_back(dev, fb);
+  }
+  return Status::ok();
+}
 
 Status WindowPresenter::Impl::create_swapchain(VkExtent2D fb) {
   const VkDevice dev = ctx->device();
@@ -89,6 +222,8 @@ Status WindowPresenter::Impl::create_swapchain(VkExtent2D fb) {
   if (extent.width == 0 || extent.height == 0) return Status::ok();  // minimised: try later
   if (!(caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT))
     return Status::error("the window surface cannot be a transfer destination");
+  if (options.panel && !(caps.supportedUsageFlags & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT))
+    return Status::error("the window surface cannot be drawn to (needed by the panel)");
 
   // === Format: 8-bit UNORM so the window shows the same values as the PNGs.
   uint32_t n = 0;
@@ -141,6 +276,7 @@ Status WindowPresenter::Impl::create_swapchain(VkExtent2D fb) {
   sci.imageExtent = extent;
   sci.imageArrayLayers = 1;
   sci.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  if (options.panel) sci.imageUsage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
   sci.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
   sci.preTransform = caps.currentTransform;
   sci.compositeAlpha = alpha;
@@ -162,6 +298,10 @@ Status WindowPresenter::Impl::create_swapchain(VkExtent2D fb) {
     auto sem = ctx->create_semaphore();
     if (!sem) return sem.status();
     s.render_done.push_back(std::move(*sem));
+  }
+  if (options.panel) {
+    if (auto st = create_panel(s.format, caps.minImageCount, n); !st) return st;
+    if (auto st = create_panel_framebuffers(s); !st) return st;
   }
   swapchain = std::move(s);  // the old swapchain is destroyed here (device idle)
   recreate = false;
@@ -229,13 +369,27 @@ Status WindowPresenter::Impl::present(Scene scene) {
   blit.dstOffsets[1] = blit.srcOffsets[1];
   vkCmdBlitImage(cb, pass->color_image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
-  VkImageMemoryBarrier to_present = to_dst;
-  to_present.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  to_present.dstAccessMask = 0;
-  to_present.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-  to_present.newLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-  vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT,
-                       0, 0, nullptr, 0, nullptr, 1, &to_present);
+  if (panel_frame) {
+    // === The panel over the scene; its render pass leaves the image ready to present.
+    panel_frame = false;
+    ImGui::Render();
+    VkRenderPassBeginInfo rb{};
+    rb.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+    rb.renderPass = panel_pass.get();
+    rb.framebuffer = swapchain.framebuffers[index].get();
+    rb.renderArea = {{0, 0}, swapchain.extent};
+    vkCmdBeginRenderPass(cb, &rb, VK_SUBPASS_CONTENTS_INLINE);
+    ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cb);
+    vkCmdEndRenderPass(cb);
+  } else {
+    VkImageMemoryBarrier to_present = to_dst;
+    to_present.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    to_present.dstAccessMask = 0;
+    to_present.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    to_present.newLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT,
+                         0, 0, nullptr, 0, nullptr, 1, &to_present);
+  }
   if (const VkResult r = vkEndCommandBuffer(cb); r != VK_SUCCESS)
     return Status::error("vkEndCommandBuffer failed: " + vk::result_name(r));
 
@@ -345,6 +499,21 @@ std::pair<int, int> WindowPresenter::framebuffer_size() const {
 }
 Status WindowPresenter::present(Scene scene) { return impl_->present(std::move(scene)); }
 GLFWwindow* WindowPresenter::window() const { return impl_->window.get(); }
+bool WindowPresenter::begin_panel() {
+  if (!impl_->imgui_vulkan) return false;  // no panel, or no swapchain yet
+  if (impl_->panel_frame) ImGui::EndFrame();  // the last panel frame was never presented
+  ImGui_ImplVulkan_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  impl_->panel_frame = true;
+  return true;
+}
+bool WindowPresenter::panel_wants_mouse() const {
+  return impl_->imgui_context && ImGui::GetIO().WantCaptureMouse;
+}
+bool WindowPresenter::panel_wants_keyboard() const {
+  return impl_->imgui_context && ImGui::GetIO().WantCaptureKeyboard;
+}
 std::string WindowPresenter::device_name() const { return impl_->ctx->device_name(); }
 std::size_t WindowPresenter::validation_messages() const {
   return impl_->ctx->validation_messages();
