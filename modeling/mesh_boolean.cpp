@@ -9,6 +9,7 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <array>
 #include <string>
 
@@ -152,7 +153,8 @@ SurfaceMesh to_surface_mesh(const SnappedSolid& s, const std::vector<Plane>& pla
   std::vector<SurfaceMesh::Vertex_index> vi;
   vi.reserve(s.mesh.vertices.size());
   for (std::size_t v = 0; v < s.mesh.vertices.size(); ++v) {
-    const std::array<int, 3> tags = v < s.tags.size() ? s.tags[v] : std::array<int, 3>{-1, -1, -1};
+    std::array<int, 3> tags = v < s.tags.size() ? s.tags[v] : std::array<int, 3>{-1, -1, -1};
+    if (std::getenv("PS_SNAP_MULTI") && tags[1] < 0) tags[0] = -1;  // EXPERIMENT
     vi.push_back(sm.add_vertex(snap_point(s.mesh.vertices[v], tags, planes)));
   }
   for (const auto& f : s.mesh.faces)

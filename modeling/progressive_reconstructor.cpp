@@ -218,46 +218,71 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
   rep.timings.partition_ms = ms_since(t);
   progress("partition", 1.0);
 
-  t = Clock::now();
-  FrustumReport fr;
-  auto frusta = build_frusta(*part, FrustumOptions{}, &fr);
-  if (!frusta) return frusta.status();
-  rep.primitives = fr.frusta;
-  rep.timings.primitives_ms = ms_since(t);
-  progress("primitives", 1.0);
+  // Frusta, then the unions of each zone. A refused union (a non-manifold contact between
+  // frusta) is retried with the frusta rebuilt under other margins and heights: the contacts
+  // are coincidences of the construction, not of the input (same idea as the perturbation of
+  // 4.3). Every attempt is deterministic.
+  FrustumOptions wide;
+  wide.face_margin = 0.045;
+  wide.height_margin = 0.12;
+  FrustumOptions narrow;
+  narrow.face_margin = 0.009;
+  narrow.height_margin = 0.03;
+  const FrustumOptions attempts[] = {FrustumOptions{}, wide, narrow};
+  std::vector<TriMesh> solids;
+  std::string failure;
+  std::size_t todo_count = 0;
+  for (std::size_t attempt = 0; attempt < 3; ++attempt) {
+    t = Clock::now();
+    FrustumReport fr;
+    auto frusta = build_frusta(*part, attempts[attempt], &fr);
+    if (!frusta) return frusta.status();
+    rep.primitives = fr.frusta;
+    rep.timings.primitives_ms += ms_since(t);
+    progress("primitives", 1.0);
 
-  t = Clock::now();
-  std::vector<int> todo;
-  for (std::size_t z = 0; z < frusta->size(); ++z)
-    if (!(*frusta)[z].solids.empty()) todo.push_back(static_cast<int>(z));
-  std::vector<TriMesh> solids(frusta->size());
-  std::vector<std::string> errors(todo.size());
-  parallel_over(todo.size(), threads, [&](std::size_t i) {
-    const std::size_t z = uz(todo[i]);
-    // An intermediate union can be non-manifold (two frusta touching along an edge or at a
-    // point) when the whole union is not: retry from each other starting frustum, then reversed
-    // (fixed orders: deterministic).
-    const auto& fz = (*frusta)[z].solids;
-    auto u = union_snapped_solids(fz, part->planes);
-    for (std::size_t rot = 1; !u && rot < fz.size() + 1 && fz.size() > 1; ++rot) {
-      std::vector<SnappedSolid> order(fz);
-      if (rot < fz.size())
-        std::rotate(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(rot), order.end());
-      else
-        std::reverse(order.begin(), order.end());
-      u = union_snapped_solids(order, part->planes);
+    t = Clock::now();
+    std::vector<int> todo;
+    for (std::size_t z = 0; z < frusta->size(); ++z)
+      if (!(*frusta)[z].solids.empty()) todo.push_back(static_cast<int>(z));
+    solids.assign(frusta->size(), TriMesh{});
+    std::vector<std::string> errors(todo.size());
+    parallel_over(todo.size(), threads, [&](std::size_t i) {
+      const std::size_t z = uz(todo[i]);
+      // An intermediate union can be non-manifold (two frusta touching along an edge or at a
+      // point) when the whole union is not: retry from each other starting frustum, then
+      // reversed (fixed orders: deterministic).
+      const auto& fz = (*frusta)[z].solids;
+      auto u = union_snapped_solids(fz, part->planes);
+      for (std::size_t rot = 1; !u && rot < fz.size() + 1 && fz.size() > 1; ++rot) {
+        std::vector<SnappedSolid> order(fz);
+        if (rot < fz.size())
+          std::rotate(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(rot), order.end());
+        else
+          std::reverse(order.begin(), order.end());
+        u = union_snapped_solids(order, part->planes);
+      }
+      if (u) {
+        solids[z] = std::move(*u);
+        canonicalize(solids[z]);
+      } else {
+        errors[i] = "zone " + std::to_string(z) + ": " + u.message();
+      }
+    });
+    rep.timings.union_ms += ms_since(t);
+    failure.clear();
+    for (const auto& e : errors)
+      if (!e.empty() && failure.empty()) failure = e;
+    todo_count = todo.size();
+    if (failure.empty()) {
+      if (attempt > 0)
+        rep.warnings.push_back("frusta rebuilt with other margins (attempt " + std::to_string(attempt + 1) +
+                               ") after a refused union");
+      break;
     }
-    if (u) {
-      solids[z] = std::move(*u);
-      canonicalize(solids[z]);
-    } else {
-      errors[i] = "zone " + std::to_string(z) + ": " + u.message();
-    }
-  });
-  for (const auto& e : errors)
-    if (!e.empty()) return Result<TriMesh>::error("reconstruction failed: " + e);
-  rep.zones_recomputed = static_cast<int>(todo.size());
-  rep.timings.union_ms = ms_since(t);
+  }
+  if (!failure.empty()) return Result<TriMesh>::error("reconstruction failed: " + failure);
+  rep.zones_recomputed = static_cast<int>(todo_count);
   progress("union", 1.0);
 
   t = Clock::now();
