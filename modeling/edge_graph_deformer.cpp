@@ -11,8 +11,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <atomic>
 #include <optional>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "modeling/edge_graph.h"
 
@@ -30,6 +33,61 @@ using SpRow = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 using SpCol = Eigen::SparseMatrix<double, Eigen::ColMajor>;
 
 constexpr std::size_t kGrain = 512;
+
+// === Parallel loops
+// TBB's parallel_for / parallel_reduce, except in ThreadSanitizer builds: Debian's libtbb is not
+// instrumented, so its internal hand-offs are invisible to TSan and every task would look racy
+// (as for parallel_over in progressive_reconstructor.cpp). There the range is cut into chunks
+// of its grain size, run on std::threads taking chunk indices from an atomic counter (creation
+// and join are synchronisation TSan sees), so what TSan reports is about the loop bodies and
+// the state they share. A reduction keeps one partial per chunk and joins them in chunk order.
+#if defined(__SANITIZE_THREAD__)
+template <class Index>
+std::vector<tbb::blocked_range<Index>> chunks_of(const tbb::blocked_range<Index>& all) {
+  std::vector<tbb::blocked_range<Index>> out;
+  const Index step = static_cast<Index>(std::max<std::size_t>(1, all.grainsize()));
+  for (Index b = all.begin(); b < all.end(); b = b + std::min(step, all.end() - b))
+    out.emplace_back(b, b + std::min(step, all.end() - b));
+  return out;
+}
+
+template <class Task>
+void run_on_threads(std::size_t n, const Task& task) {
+  const std::size_t k = std::min<std::size_t>(n, std::max(1u, std::thread::hardware_concurrency()));
+  std::atomic<std::size_t> next{0};
+  std::vector<std::thread> pool;
+  for (std::size_t t = 0; t < k; ++t)
+    pool.emplace_back([&] {
+      for (std::size_t i = next++; i < n; i = next++) task(i);
+    });
+  for (auto& th : pool) th.join();
+}
+#endif
+
+template <class Index, class Body>
+void parallel_loop(const tbb::blocked_range<Index>& all, const Body& body) {
+#if defined(__SANITIZE_THREAD__)
+  const auto chunks = chunks_of(all);
+  run_on_threads(chunks.size(), [&](std::size_t i) { body(chunks[i]); });
+#else
+  tbb::parallel_for(all, body);
+#endif
+}
+
+// body(range, acc) -> acc + the range's share; join(a, b) -> a + b; identity: the identity.
+template <class Index, class Body, class Join>
+double parallel_sum(const tbb::blocked_range<Index>& all, double identity, const Body& body, const Join& join) {
+#if defined(__SANITIZE_THREAD__)
+  const auto chunks = chunks_of(all);
+  std::vector<double> partial(chunks.size(), identity);
+  run_on_threads(chunks.size(), [&](std::size_t i) { partial[i] = body(chunks[i], identity); });
+  double total = identity;
+  for (double p : partial) total = join(total, p);
+  return total;
+#else
+  return tbb::parallel_reduce(all, identity, body, join);
+#endif
+}
 
 // Eq. 5.5: the rotation maximising tr(R S) for S = U Sigma V^T is R = V U^T, with the sign of
 // U's column for the smallest singular value flipped when det(V U^T) < 0.
@@ -76,7 +134,7 @@ Eigen::Matrix3d fit_rotation(const Eigen::Matrix3d& s) {
 template <class Out>
 void parallel_product(const SpRow& m, const MatX3& in, Eigen::Index offset, Out& out) {
   out.resize(m.rows(), 3);
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, m.rows(), kGrain), [&](const auto& range) {
+  parallel_loop(tbb::blocked_range<Eigen::Index>(0, m.rows(), kGrain), [&](const auto& range) {
     for (Eigen::Index r = range.begin(); r != range.end(); ++r) {
       Eigen::RowVector3d acc = Eigen::RowVector3d::Zero();
       for (SpRow::InnerIterator it(m, r); it; ++it) acc += it.value() * in.row(offset + it.col());
@@ -155,10 +213,10 @@ struct EdgeGraphDeformer::Impl {
   void compute_positions() {
     ypos.resize(static_cast<Eigen::Index>(ref_v.size()), 3);
     fnorm.resize(static_cast<Eigen::Index>(ref_faces.size()), 3);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ref_v.size(), 1024), [&](const auto& range) {
+    parallel_loop(tbb::blocked_range<std::size_t>(0, ref_v.size(), 1024), [&](const auto& range) {
       for (std::size_t r = range.begin(); r != range.end(); ++r) ypos.row(static_cast<Eigen::Index>(r)) = node_pos(ref_v[r], ref_c[r]);
     });
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ref_faces.size(), 1024), [&](const auto& range) {
+    parallel_loop(tbb::blocked_range<std::size_t>(0, ref_faces.size(), 1024), [&](const auto& range) {
       for (std::size_t f = range.begin(); f != range.end(); ++f) {
         const auto& tri = ref_faces[f];
         const Vec3 p0 = x.row(tri[0]).transpose();
@@ -183,7 +241,7 @@ struct EdgeGraphDeformer::Impl {
   double local_step() {
     const int n_arcs = static_cast<int>(arc_v.size());
     compute_positions();
-    return tbb::parallel_reduce(
+    return parallel_sum(
         tbb::blocked_range<std::size_t>(0, nodes.size(), 256), 0.0,
         [&](const auto& range, double energy_acc) {
           for (std::size_t a = range.begin(); a != range.end(); ++a) {
@@ -248,7 +306,7 @@ struct EdgeGraphDeformer::Impl {
     if (n_free == 0) return 0.0;
     MatX3 jx;
     parallel_product(jf, x, 0, jx);
-    return tbb::parallel_reduce(
+    return parallel_sum(
         tbb::blocked_range<Eigen::Index>(0, jx.rows(), kGrain), 0.0,
         [&](const auto& range, double acc) {
           for (Eigen::Index r = range.begin(); r != range.end(); ++r)

@@ -106,14 +106,21 @@ struct CellKey {
   std::int64_t x, y, z;
   bool operator==(const CellKey& o) const { return x == o.x && y == o.y && z == o.z; }
 };
+// Unsigned arithmetic: cell indices far from the origin (a model 1e12 of its size away) made
+// the signed products overflow (undefined behaviour); unsigned ones wrap to the same bits.
 struct CellHash {
   std::size_t operator()(const CellKey& k) const {
-    return static_cast<std::size_t>(k.x * 73856093LL ^ k.y * 19349663LL ^ k.z * 83492791LL);
+    return static_cast<std::size_t>(static_cast<std::uint64_t>(k.x) * 73856093ULL ^
+                                    static_cast<std::uint64_t>(k.y) * 19349663ULL ^
+                                    static_cast<std::uint64_t>(k.z) * 83492791ULL);
   }
 };
+// Cell indices are clamped to +-2^62 before the conversion (a double beyond the int64 range
+// converts with undefined behaviour); clamped points share a cell, which only adds candidates.
 CellKey cell_of(const Vec3& p, double h) {
-  return {static_cast<std::int64_t>(std::floor(p.x() / h)), static_cast<std::int64_t>(std::floor(p.y() / h)),
-          static_cast<std::int64_t>(std::floor(p.z() / h))};
+  constexpr double kLimit = 4611686018427387904.0;  // 2^62
+  auto index = [&](double c) { return static_cast<std::int64_t>(std::clamp(std::floor(c / h), -kLimit, kLimit)); };
+  return {index(p.x()), index(p.y()), index(p.z())};
 }
 
 std::uint64_t edge_key(int a, int b) {

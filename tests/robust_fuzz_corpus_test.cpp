@@ -12,13 +12,7 @@ TEST(RobustFuzzCorpus, DeformSpec) { ps::fuzz::run_target("deform_spec", ps::fuz
 TEST(RobustFuzzCorpus, Reconstruct) { ps::fuzz::run_target("reconstruct", ps::fuzz::check_reconstruct_bytes, 4); }
 
 TEST(RobustFuzzCorpus, ReconstructRandomBytes) {
-  ps::SeededRandom rng(20261122);
-  for (int c = 0; c < 40; ++c) {
-    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(rng.integer(0, 160)));
-    for (auto& b : bytes) b = static_cast<std::uint8_t>(rng.integer(0, 255));
-    const std::string p = ps::fuzz::check_reconstruct_bytes(bytes.data(), bytes.size());
-    EXPECT_TRUE(p.empty()) << "random input " << c << ": " << p;
-  }
+  ps::fuzz::run_random_bytes(ps::fuzz::check_reconstruct_bytes, 20261122, 40, 160);
 }
 
 TEST(RobustFuzzCorpus, ValidSeedsReachTheDeepPaths) {

@@ -85,5 +85,15 @@ inline void run_target(const std::string& target, const Check& check, int mutati
   EXPECT_GT(runs, 0);
 }
 
+// The check over `cases` random byte strings of up to `max_len` bytes (deterministic by seed).
+inline void run_random_bytes(const Check& check, std::uint64_t seed, int cases, int max_len) {
+  ps::SeededRandom rng(seed);
+  for (int c = 0; c < cases; ++c) {
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(rng.integer(0, max_len)));
+    for (auto& b : bytes) b = static_cast<std::uint8_t>(rng.integer(0, 255));
+    const std::string p = check(bytes.data(), bytes.size());
+    EXPECT_TRUE(p.empty()) << "random input " << c << ": " << p;
+  }
+}
 
 }  // namespace ps::fuzz

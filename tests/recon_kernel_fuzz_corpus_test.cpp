@@ -1,0 +1,76 @@
+// The reconstruction-kernel fuzz target's body (tests/fuzz/recon_kernel_entry_point.h) over its
+// seed corpus and deterministic mutations of it, in every build (GCC Release, ASan+UBSan), so
+// the target's contract is checked in CI without clang (issue 8, point 1).
+#include <gtest/gtest.h>
+
+#include "modeling/mesh_slicer.h"
+#include "tests/fuzz/corpus_runner.h"
+#include "tests/fuzz/recon_kernel_entry_point.h"
+
+namespace {
+
+ps::Result<ps::TriMesh> reconstruct_seed(const std::string& bytes) {
+  ps::ReconstructOptions o;
+  o.improve = false;
+  o.threads = 1;
+  const auto* d = reinterpret_cast<const std::uint8_t*>(bytes.data());
+  return ps::reconstruct(ps::fuzz::decode_kernel_sections(d, bytes.size()), o);
+}
+
+}  // namespace
+
+// A reconstruction takes tens of milliseconds here: a few mutations per seed.
+TEST(ReconKernelFuzzCorpus, SeedsAndMutations) {
+  ps::fuzz::run_target(
+      "recon_kernel", [](const std::uint8_t* d, std::size_t n) { return ps::fuzz::check_recon_kernel_bytes(d, n); }, 3);
+}
+
+TEST(ReconKernelFuzzCorpus, RandomBytes) {
+  ps::fuzz::run_random_bytes([](const std::uint8_t* d, std::size_t n) { return ps::fuzz::check_recon_kernel_bytes(d, n); },
+                             20261201, 30, 200);
+}
+
+// valid_* seeds must keep reconstructing and refused_* seeds keep being refused, or the corpus
+// stops reaching the union (or the validation branches it was made for).
+TEST(ReconKernelFuzzCorpus, SeedsKeepTheirOutcome) {
+  int valid = 0, refused = 0;
+  for (const auto& [name, bytes] : ps::fuzz::corpus("recon_kernel")) {
+    if (name.rfind("valid_", 0) == 0) {
+      auto m = reconstruct_seed(bytes);
+      EXPECT_TRUE(m) << name << ": " << m.message();
+      ++valid;
+    } else if (name.rfind("refused_", 0) == 0) {
+      auto m = reconstruct_seed(bytes);
+      EXPECT_FALSE(m) << name << " was accepted";
+      if (!m) {
+        EXPECT_FALSE(m.message().empty()) << name;
+      }
+      ++refused;
+    }
+  }
+  EXPECT_GE(valid, 4);
+  EXPECT_GE(refused, 4);
+}
+
+// The whole contract, self-intersections included, on every seed but the known reproducer.
+TEST(ReconKernelFuzzCorpus, StrictContractOnTheSeeds) {
+  for (const auto& [name, bytes] : ps::fuzz::corpus("recon_kernel")) {
+    if (name == "valid_three_axes") continue;
+    const auto* d = reinterpret_cast<const std::uint8_t*>(bytes.data());
+    EXPECT_EQ(ps::fuzz::check_recon_kernel_bytes(d, bytes.size(), true), "") << name;
+  }
+}
+
+// Known defect, not fixed (zone union; see recon_kernel_entry_point.h): three equal circles on
+// x, y and z planes through nearly one point. reconstruct() without improvement returns ok
+// with a closed, outward 2-manifold that intersects itself: near (-0.00235, -0.488, -0.493)
+// and (-0.00235, 0.493, 0.488) two vertices 6e-17 apart (not on a zone boundary) each carry a
+// fan of faces crossing the other's. `planesketch reconstruct` on the same input with
+// improvement gives a valid surface. Enable this test when the union rounds safely.
+TEST(ReconKernelFuzzCorpus, DISABLED_KnownSelfIntersection) {
+  for (const auto& [name, bytes] : ps::fuzz::corpus("recon_kernel")) {
+    if (name != "valid_three_axes") continue;
+    const auto* d = reinterpret_cast<const std::uint8_t*>(bytes.data());
+    EXPECT_EQ(ps::fuzz::check_recon_kernel_bytes(d, bytes.size(), true), "") << name;
+  }
+}
