@@ -9,7 +9,6 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <array>
 #include <string>
 
@@ -85,67 +84,65 @@ namespace {
 
 using FT = K::FT;
 
-// The point nearest to p on the planes listed in `tags`: x = p + N^T (N N^T)^-1 (d - N p),
-// solved by Cramer's rule in exact arithmetic (k <= 3 planes). Hand-written: CGAL projects
-// onto one plane or line, not onto the intersection of up to three planes given by double
-// coefficients.
+// An exact point on the planes listed in `tags`, next to p (p lies on them up to rounding).
+// Hand-written: CGAL projects onto one plane or line, not onto the intersection of up to three
+// planes given by double coefficients. The point keeps as many of p's double coordinates as
+// the planes leave free and solves for the others (one plane: the coordinate of the normal's
+// largest component; two: all but the line direction's largest component; three: the vertex
+// by Cramer's rule). Solving rather than projecting keeps the rationals short (denominators
+// of one double, or a 2x2 determinant), which is what the union's exact predicates pay for on
+// every coplanar test.
 K::Point_3 snap_point(const Vec3& p, const std::array<int, 3>& tags, const std::vector<Plane>& planes) {
-  std::array<std::array<FT, 3>, 3> n;
-  std::array<FT, 3> r;
+  std::array<const Plane*, 3> on{};
   int k = 0;
-  const FT px(p.x()), py(p.y()), pz(p.z());
-  for (int t : tags) {
-    if (t < 0 || static_cast<std::size_t>(t) >= planes.size()) continue;
-    const Plane& pl = planes[static_cast<std::size_t>(t)];
-    n[static_cast<std::size_t>(k)] = {FT(pl.normal.x()), FT(pl.normal.y()), FT(pl.normal.z())};
-    const auto& a = n[static_cast<std::size_t>(k)];
-    r[static_cast<std::size_t>(k)] = FT(pl.offset) - (a[0] * px + a[1] * py + a[2] * pz);
-    ++k;
-  }
-  if (k == 0) return K::Point_3(p.x(), p.y(), p.z());
-  auto dot = [&](int i, int j) {
-    const auto& a = n[static_cast<std::size_t>(i)];
-    const auto& b = n[static_cast<std::size_t>(j)];
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  for (int t : tags)
+    if (t >= 0 && static_cast<std::size_t>(t) < planes.size()) on[static_cast<std::size_t>(k++)] = &planes[static_cast<std::size_t>(t)];
+  std::array<FT, 3> x{FT(p.x()), FT(p.y()), FT(p.z())};
+  auto largest = [](const Vec3& v) {
+    int m = 0;
+    for (int c = 1; c < 3; ++c)
+      if (std::abs(v[c]) > std::abs(v[m])) m = c;
+    return m;
   };
-  std::array<FT, 3> lambda{FT(0), FT(0), FT(0)};
   if (k == 1) {
-    lambda[0] = r[0] / dot(0, 0);
+    const Plane& a = *on[0];
+    const int c = largest(a.normal);
+    FT r(a.offset);
+    for (int j = 0; j < 3; ++j)
+      if (j != c) r -= FT(a.normal[j]) * x[static_cast<std::size_t>(j)];
+    x[static_cast<std::size_t>(c)] = r / FT(a.normal[c]);
   } else if (k == 2) {
-    const FT a = dot(0, 0), b = dot(0, 1), c = dot(1, 1);
-    const FT det = a * c - b * b;
-    if (CGAL::is_zero(det)) {
-      lambda[0] = r[0] / a;
-    } else {
-      lambda[0] = (r[0] * c - b * r[1]) / det;
-      lambda[1] = (a * r[1] - b * r[0]) / det;
+    const Plane &a = *on[0], &b = *on[1];
+    const int fixed = largest(a.normal.cross(b.normal));
+    const int i = (fixed + 1) % 3, j = (fixed + 2) % 3;
+    const FT ra = FT(a.offset) - FT(a.normal[fixed]) * x[static_cast<std::size_t>(fixed)];
+    const FT rb = FT(b.offset) - FT(b.normal[fixed]) * x[static_cast<std::size_t>(fixed)];
+    const FT ai(a.normal[i]), aj(a.normal[j]), bi(b.normal[i]), bj(b.normal[j]);
+    const FT det = ai * bj - aj * bi;
+    if (!CGAL::is_zero(det)) {
+      x[static_cast<std::size_t>(i)] = (ra * bj - aj * rb) / det;
+      x[static_cast<std::size_t>(j)] = (ai * rb - ra * bi) / det;
     }
-  } else {
+  } else if (k == 3) {
     std::array<std::array<FT, 3>, 3> m;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = dot(i, j);
+    std::array<FT, 3> r;
+    for (std::size_t i = 0; i < 3; ++i) {
+      for (std::size_t j = 0; j < 3; ++j) m[i][j] = FT(on[i]->normal[static_cast<int>(j)]);
+      r[i] = FT(on[i]->offset);
+    }
     auto det3 = [](const std::array<std::array<FT, 3>, 3>& q) {
       return q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) - q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
              q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
     };
     const FT det = det3(m);
-    if (CGAL::is_zero(det)) {
-      lambda[0] = r[0] / dot(0, 0);
-    } else {
+    if (!CGAL::is_zero(det))
       for (std::size_t c = 0; c < 3; ++c) {
         auto mc = m;
         for (std::size_t i = 0; i < 3; ++i) mc[i][c] = r[i];
-        lambda[c] = det3(mc) / det;
+        x[c] = det3(mc) / det;
       }
-    }
   }
-  FT x = px, y = py, z = pz;
-  for (std::size_t i = 0; i < static_cast<std::size_t>(k); ++i) {
-    x += lambda[i] * n[i][0];
-    y += lambda[i] * n[i][1];
-    z += lambda[i] * n[i][2];
-  }
-  return K::Point_3(x, y, z);
+  return K::Point_3(x[0], x[1], x[2]);
 }
 
 SurfaceMesh to_surface_mesh(const SnappedSolid& s, const std::vector<Plane>& planes) {
@@ -153,8 +150,7 @@ SurfaceMesh to_surface_mesh(const SnappedSolid& s, const std::vector<Plane>& pla
   std::vector<SurfaceMesh::Vertex_index> vi;
   vi.reserve(s.mesh.vertices.size());
   for (std::size_t v = 0; v < s.mesh.vertices.size(); ++v) {
-    std::array<int, 3> tags = v < s.tags.size() ? s.tags[v] : std::array<int, 3>{-1, -1, -1};
-    if (std::getenv("PS_SNAP_MULTI") && tags[1] < 0) tags[0] = -1;  // EXPERIMENT
+    const std::array<int, 3> tags = v < s.tags.size() ? s.tags[v] : std::array<int, 3>{-1, -1, -1};
     vi.push_back(sm.add_vertex(snap_point(s.mesh.vertices[v], tags, planes)));
   }
   for (const auto& f : s.mesh.faces)
@@ -165,20 +161,89 @@ SurfaceMesh to_surface_mesh(const SnappedSolid& s, const std::vector<Plane>& pla
 
 }  // namespace
 
+namespace {
+
+// Snapping can make three points of a face exactly collinear (corefinement does not check its
+// input and crashed on such faces).
+bool has_degenerate_face(const SurfaceMesh& sm) {
+  for (auto f : sm.faces()) {
+    const auto h = sm.halfedge(f);
+    if (CGAL::collinear(sm.point(sm.source(h)), sm.point(sm.target(h)), sm.point(sm.target(sm.next(h))))) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 Result<TriMesh> union_snapped_solids(const std::vector<SnappedSolid>& solids, const std::vector<Plane>& planes) {
   if (solids.empty()) return TriMesh{};
-  SurfaceMesh acc = to_surface_mesh(solids.front(), planes);
-  for (std::size_t i = 1; i < solids.size(); ++i) {
-    SurfaceMesh next = to_surface_mesh(solids[i], planes);
-    bool ok = false;
-    try {
-      ok = PMP::corefine_and_compute_union(acc, next, acc);
-    } catch (const std::exception& e) {
-      return Result<TriMesh>::error(std::string("union of frusta failed: ") + e.what());
-    }
-    if (!ok) return Result<TriMesh>::error("union of frusta would not be 2-manifold (frustum " + std::to_string(i) + ")");
+  const std::size_t n = solids.size();
+  // Groups of frusta whose boxes overlap (with a margin): frusta of different groups are
+  // disjoint, so their union is the plain concatenation, and corefinement (whose exact
+  // constructions grow with every union chained onto the last) only runs within a group.
+  std::vector<Box3> boxes(n);
+  double diag = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    boxes[i] = bounding_box(solids[i].mesh.vertices);
+    diag = std::max(diag, boxes[i].diagonal());
   }
-  return to_tri_mesh(acc);
+  const double pad = 1e-9 * diag;
+  std::vector<std::size_t> group(n);
+  for (std::size_t i = 0; i < n; ++i) group[i] = i;
+  auto find = [&](std::size_t i) {
+    while (group[i] != i) i = group[i] = group[group[i]];
+    return i;
+  };
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const bool overlap = ((boxes[i].min.array() - pad) <= boxes[j].max.array()).all() &&
+                           ((boxes[j].min.array() - pad) <= boxes[i].max.array()).all();
+      if (!overlap) continue;
+      const std::size_t a = find(i), b = find(j);
+      if (a != b) group[std::max(a, b)] = std::min(a, b);
+    }
+  TriMesh out;
+  for (std::size_t root = 0; root < n; ++root) {
+    if (find(root) != root) continue;
+    // The group's frusta in their given order, united pairwise in a balanced tree (shallower
+    // chains of exact constructions than one running union).
+    std::vector<SurfaceMesh> level;
+    std::vector<std::size_t> ids;
+    for (std::size_t i = root; i < n; ++i) {
+      if (find(i) != root) continue;
+      level.push_back(to_surface_mesh(solids[i], planes));
+      ids.push_back(i);
+      if (has_degenerate_face(level.back()))
+        return Result<TriMesh>::error("frustum " + std::to_string(i) + " has a degenerate face after snapping");
+    }
+    while (level.size() > 1) {
+      std::vector<SurfaceMesh> next;
+      std::vector<std::size_t> next_ids;
+      for (std::size_t k = 0; k + 1 < level.size(); k += 2) {
+        bool ok = false;
+        try {
+          ok = PMP::corefine_and_compute_union(level[k], level[k + 1], level[k]);
+        } catch (const std::exception& e) {
+          return Result<TriMesh>::error(std::string("union of frusta failed: ") + e.what());
+        }
+        if (!ok)
+          return Result<TriMesh>::error("union of frusta would not be 2-manifold (frustum " + std::to_string(ids[k + 1]) + ")");
+        next.push_back(std::move(level[k]));
+        next_ids.push_back(ids[k]);
+      }
+      if (level.size() % 2 == 1) {
+        next.push_back(std::move(level.back()));
+        next_ids.push_back(ids.back());
+      }
+      level = std::move(next);
+      ids = std::move(next_ids);
+    }
+    const TriMesh part = to_tri_mesh(level.front());
+    const int base = static_cast<int>(out.vertices.size());
+    out.vertices.insert(out.vertices.end(), part.vertices.begin(), part.vertices.end());
+    for (const auto& f : part.faces) out.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+  }
+  return out;
 }
 
 // === Booleans of whole solids (sculpting)

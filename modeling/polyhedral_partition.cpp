@@ -250,19 +250,49 @@ Result<PolyPartition> partition_polyhedral(const ValidatedSections& vs, const Bo
             kept_input.pop_back();
           }
           if (kept.size() < 3) return false;
-          std::vector<Vec2> q2;
-          std::vector<PlaneTags> tags;
-          for (const auto& p : kept) {
-            q2.push_back(fr.to_2d(p));
+          // Tags: the face-edge planes a point lies on. Clip points lie on them by
+          // construction (within rounding); an input point only when it is a crossing (sewn
+          // to within rounding), not merely close: snapping a curve point that runs near an
+          // edge onto it would make it exactly collinear with its neighbours there.
+          std::vector<PlaneTags> all_tags;
+          for (std::size_t j = 0; j < kept.size(); ++j) {
+            const Vec3& p = kept[j];
+            const double near = kept_input[j] ? 1e2 * tol : 1e3 * tol;
             PlaneTags t{r.plane, -1, -1};
             int n = 1;
             for (std::size_t i = 0; i < face->polygon.size() && n < 3; ++i) {
               const int ep = face->edge_plane[i];
               if (ep < 0 || std::find(t.begin(), t.end(), ep) != t.end()) continue;
-              if (std::abs(part.planes[uz(ep)].signed_distance(p)) <= 1e3 * tol) t[uz(n++)] = ep;
+              if (std::abs(part.planes[uz(ep)].signed_distance(p)) <= near) t[uz(n++)] = ep;
             }
-            tags.push_back(t);
+            all_tags.push_back(t);
           }
+          // A clip point between two points on the same edge line adds nothing but a straight
+          // angle (three exactly collinear points after snapping): dropped.
+          std::vector<Vec3> pts3;
+          std::vector<PlaneTags> tags;
+          const std::size_t count = kept.size();
+          auto shares_edge = [&](std::size_t a, std::size_t b, int plane) {
+            (void)a;
+            return std::find(all_tags[b].begin() + 1, all_tags[b].end(), plane) != all_tags[b].end();
+          };
+          for (std::size_t j = 0; j < count; ++j) {
+            const std::size_t prev = (j + count - 1) % count, next = (j + 1) % count;
+            bool straight = false;
+            if (!kept_input[j])
+              for (int s2 = 1; s2 < 3 && !straight; ++s2) {
+                const int pl2 = all_tags[j][uz(s2)];
+                straight = pl2 >= 0 && shares_edge(j, prev, pl2) && shares_edge(j, next, pl2) &&
+                           all_tags[j][2] < 0;
+              }
+            if (straight) continue;
+            pts3.push_back(kept[j]);
+            tags.push_back(all_tags[j]);
+          }
+          if (pts3.size() < 3) return false;
+          kept = std::move(pts3);
+          std::vector<Vec2> q2;
+          for (const auto& p : kept) q2.push_back(fr.to_2d(p));
           piece.loops.push_back(std::move(kept));
           piece.loops2d.push_back(std::move(q2));
           piece.tags.push_back(std::move(tags));

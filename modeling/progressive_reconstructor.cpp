@@ -13,10 +13,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <mutex>
 #include <thread>
 #include <tuple>
 
 #include "modeling/cylinder_builder.h"
+#include "modeling/face_intersections.h"
 #include "modeling/frustum_builder.h"
 #include "modeling/polyhedral_partition.h"
 #include "modeling/mesh_topology.h"
@@ -230,6 +232,7 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
   narrow.height_margin = 0.03;
   const FrustumOptions attempts[] = {FrustumOptions{}, wide, narrow};
   std::vector<TriMesh> solids;
+  TriMesh mesh;
   std::string failure;
   std::size_t todo_count = 0;
   for (std::size_t attempt = 0; attempt < 3; ++attempt) {
@@ -247,7 +250,22 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       if (!(*frusta)[z].solids.empty()) todo.push_back(static_cast<int>(z));
     solids.assign(frusta->size(), TriMesh{});
     std::vector<std::string> errors(todo.size());
+    // Progress per zone for long runs (the callback is called under a lock, from the worker
+    // threads).
+    std::atomic<std::size_t> zones_done{0};
+    std::mutex progress_lock;
     parallel_over(todo.size(), threads, [&](std::size_t i) {
+      struct Report {
+        std::atomic<std::size_t>& done;
+        std::mutex& lock;
+        const std::function<void(const char*, double)>& progress;
+        std::size_t total;
+        ~Report() {
+          const std::size_t d = ++done;
+          const std::lock_guard<std::mutex> hold(lock);
+          progress("union", static_cast<double>(d) / static_cast<double>(total));
+        }
+      } report_done{zones_done, progress_lock, progress, todo.size()};
       const std::size_t z = uz(todo[i]);
       // An intermediate union can be non-manifold (two frusta touching along an edge or at a
       // point) when the whole union is not: retry from each other starting frustum, then
@@ -275,19 +293,31 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       if (!e.empty() && failure.empty()) failure = e;
     todo_count = todo.size();
     if (failure.empty()) {
+      // Stitch, and check what the rounding of exact unions may have broken: a closed
+      // manifold (checked again by the caller) without self-intersections (two nearly
+      // coincident exact points rounded onto each other can fold a fan).
+      t = Clock::now();
+      mesh = stitch_polyhedral_zones(*part, solids, 1e-10 * box.diagonal());
+      const MeshTopology topo = mesh_topology(mesh);
+      if (!topo.closed || !topo.manifold() || !topo.consistently_oriented) {
+        failure = "the stitched surface is not a closed, oriented 2-manifold (" + topo.problem + ")";
+      } else {
+        std::vector<int> all(mesh.faces.size());
+        for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+        if (!intersecting_face_pairs(mesh.vertices, mesh.faces, all).empty())
+          failure = "the stitched surface intersects itself";
+      }
+      rep.timings.stitch_ms += ms_since(t);
+    }
+    if (failure.empty()) {
       if (attempt > 0)
-        rep.warnings.push_back("frusta rebuilt with other margins (attempt " + std::to_string(attempt + 1) +
-                               ") after a refused union");
+        rep.warnings.push_back("frusta rebuilt with other margins (attempt " + std::to_string(attempt + 1) + ")");
       break;
     }
   }
   if (!failure.empty()) return Result<TriMesh>::error("reconstruction failed: " + failure);
   rep.zones_recomputed = static_cast<int>(todo_count);
   progress("union", 1.0);
-
-  t = Clock::now();
-  TriMesh mesh = stitch_polyhedral_zones(*part, solids, 1e-10 * box.diagonal());
-  rep.timings.stitch_ms = ms_since(t);
   return mesh;
 }
 

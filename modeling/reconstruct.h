@@ -25,6 +25,8 @@ struct ReconstructOptions {
   int improve_iterations = 10;
   int threads = 0;               // 0: all hardware threads; results are identical for any count
   // Called with a stage name and a fraction in [0, 1]; used to show progress on long runs.
+  // The union stage of planes of any orientation reports per zone from the worker threads,
+  // one call at a time.
   std::function<void(const std::string& stage, double fraction)> progress;
 };
 
@@ -62,7 +64,7 @@ ImproveHook improve_hook();
 Result<TriMesh> reconstruct(const SectionSet& sections, const ReconstructOptions& options = {},
                             ReconstructReport* report = nullptr);
 
-// Orthogonal input is required for now (every plane holding a curve is an axis plane); other
-// input is refused with a message naming the plane.
+// Axis planes only: the grid of chapter 4 (cached per zone in progressive updates). Any other
+// orientation: the convex zones and frusta of chapter 6 (docs/reconstruction.md).
 
 }  // namespace ps
