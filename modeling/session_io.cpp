@@ -447,9 +447,9 @@ Result<SessionFile> session_from_json(const std::string& text, const std::string
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
     std::string what = e.what();
-    if (const auto p = what.find("parse error"); p != std::string::npos) what = what.substr(p);
+    if (const auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
     return R::error(name + ": not valid JSON (" + what + ")");
   }
   try {
