@@ -1,11 +1,13 @@
 // Session files (docs/session-format.md):
 //   planesketch export SESSION.json -o OUT [--strict] [--report R.json]
 //     loads the session (rebuilds the model from its sections and operations, checks it against
-//     the saved mesh) and writes the model as .obj, .off, .ply, .stl or .glb;
+//     the saved mesh) and writes the model as .obj, .off, .ply, .stl or .glb (or, to a .json,
+//     saves the loaded session again: a check and a measure of saving);
 //   planesketch import MESH -o SESSION.json
 //     makes a session whose base is MESH (closed, manifold, oriented; refused otherwise), to
 //     sculpt or deform with `planesketch replay LOG --session SESSION.json` or the window.
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -25,9 +27,11 @@ struct ExportOptions {
   bool strict = false;
 };
 
+bool is_json(const std::string& path) { return std::filesystem::path(path).extension() == ".json"; }
+
 void run_export(const ExportOptions& o) {
-  if (!ps::is_export_extension(o.out))
-    throw ps::app::CommandFailed(o.out + ": unknown export extension (expected .obj, .off, .ply, .stl or .glb)");
+  if (!ps::is_export_extension(o.out) && !is_json(o.out))
+    throw ps::app::CommandFailed(o.out + ": unknown export extension (expected .obj, .off, .ply, .stl, .glb, or .json to save the session again)");
   ps::SketchSession session;
   ps::SessionLoadReport r;
   if (auto st = ps::load_session(o.session, session, &r); !st) throw ps::app::CommandFailed(st.message());
@@ -37,7 +41,8 @@ void run_export(const ExportOptions& o) {
   }
   const auto& st = session.state();
   const auto t0 = std::chrono::steady_clock::now();
-  if (auto s = ps::export_model(o.out, st.model); !s) throw ps::app::CommandFailed(s.message());
+  if (auto s = is_json(o.out) ? ps::save_session(o.out, session) : ps::export_model(o.out, st.model); !s)
+    throw ps::app::CommandFailed(s.message());
   const double export_ms = ms_since(t0);
   std::cerr << "planesketch: " << o.session << ": " << st.sections.curves.size() << " sections"
             << (st.base.empty() ? "" : " (imported base)") << ", " << st.ops.size() << " operations, model "
