@@ -1,5 +1,5 @@
 // planesketch replay LOG [-o MESH] [--png FILE] [--size WxH] [--report R.json] [--journal J]
-//                        [--pace-ms N] [--no-improve]
+//                        [--pace-ms N] [--no-improve] [--save-session S.json] [--base MESH | --session S.json]
 // Replays a stroke log headless through the same event path as the window (SessionDriver),
 // using the log's own timestamps, then writes the model and a picture of it. With --journal
 // the events are journaled as they are applied, exactly as the window journals live input
@@ -32,6 +32,9 @@ void setup(CLI::App& root) {
   cmd->add_option("--report", o->report, "Write a JSON summary here");
   cmd->add_option("--journal", o->journal, "Journal the applied events to this new file, as the window does");
   cmd->add_option("--pace-ms", o->pace_ms, "Sleep this many wall-clock ms before each event (model unchanged)");
+  cmd->add_option("--save-session", o->save_session, "Save the session (JSON, the mesh beside it) here at the end");
+  cmd->add_option("--base", o->base_mesh, "Start from this mesh as an imported base (sculpt or deform it)");
+  cmd->add_option("--session", o->start_session, "Start from this saved session");
   cmd->add_flag("-q,--quiet", o->quiet, "Less output");
   cmd->add_flag("--no-improve", o->no_improve, "Skip refinement and smoothing of the model");
   cmd->callback([o, log] { run(*o, *log); });

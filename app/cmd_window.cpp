@@ -18,10 +18,15 @@
 // Keys: 1/2/3 select the x/y/z plane (the view turns to face it), Up/Down move the selected plane
 // by 0.04, Ctrl+Z undo, Ctrl+Y redo, E toggles the mouse eraser, Esc quits. Left drag sketches;
 // right drag orbits the camera (arcball about the target).
+// Files (docs/session-format.md): --session S.json is loaded at start when it exists; Ctrl+S
+// saves the session there and Ctrl+E exports the model to --export FILE (both journaled `save`
+// actions, carried out on the worker after the events before them); Ctrl+O loads S.json again
+// (replacing the session, history cleared); --import MESH starts from a mesh as the base.
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -33,6 +38,7 @@
 #include <thread>
 
 #include "app/commands.h"
+#include "modeling/session_io.h"
 #include "app/journal.h"
 #include "app/preview_worker.h"
 #include "app/session_scene.h"
@@ -68,6 +74,7 @@ nlohmann::json summary(const std::vector<double>& v) {
 
 struct Options {
   std::string replay, screenshot, journal, report, size = "1280x800";
+  std::string session, export_path, import_mesh;  // session file, export target, base mesh
   double speed = 0.0;  // replay speed; 0: as fast as frames allow
   bool no_panel = false;
 };
@@ -101,6 +108,17 @@ class WindowApp {
     win_ = std::move(*presenter);
     // A finished preview wakes the UI thread from its wait for events.
     worker_ = std::make_unique<ps::app::PreviewWorker>(ps::SessionParams{}, [] { glfwPostEmptyEvent(); });
+    // `save` actions write files only for live input: replaying a journal must not rewrite them.
+    worker_->set_save_handler([this](const ps::SketchSession& s, const std::string& path) {
+      if (!live_files_) return;
+      const bool session_file = std::filesystem::path(path).extension() == ".json";
+      const auto st = session_file ? ps::save_session(path, s) : ps::export_model(path, s.state().model);
+      std::cerr << "planesketch: " << (st ? (session_file ? "session saved to " : "model exported to ") + path
+                                          : "not saved: " + st.message())
+                << "\n";
+    });
+    if (!o_.import_mesh.empty()) worker_->import_mesh(o_.import_mesh);
+    if (!o_.session.empty() && std::filesystem::exists(o_.session)) worker_->load_session(o_.session);
 
     if (!o_.replay.empty()) {
       run_replay();
@@ -232,6 +250,7 @@ class WindowApp {
     auto tablet = ps::LibinputTabletReader::open(mapping);
     if (!tablet) std::cerr << "planesketch: pen: " << tablet.message() << "; using the mouse (pressure 1)\n";
 
+    live_files_ = true;
     const auto t0 = Clock::now();
     GLFWwindow* gw = win_->window();
     need_redraw_ = true;
@@ -319,7 +338,20 @@ class WindowApp {
     }
     if (ctrl && pressed(GLFW_KEY_Z)) act(t, ps::Undo{});
     if (ctrl && pressed(GLFW_KEY_Y)) act(t, ps::Redo{});
-    if (pressed(GLFW_KEY_E)) eraser_ = !eraser_;
+    if (ctrl && pressed(GLFW_KEY_S)) {
+      if (o_.session.empty()) std::cerr << "planesketch: Ctrl+S saves to --session FILE.json; none was given\n";
+      else act(t, ps::Save{o_.session});
+    }
+    if (ctrl && pressed(GLFW_KEY_E)) {
+      if (o_.export_path.empty()) std::cerr << "planesketch: Ctrl+E exports to --export FILE; none was given\n";
+      else act(t, ps::Save{o_.export_path});
+    }
+    if (ctrl && pressed(GLFW_KEY_O)) {
+      if (o_.session.empty()) std::cerr << "planesketch: Ctrl+O opens --session FILE.json; none was given\n";
+      else worker_->load_session(o_.session, t);
+      need_redraw_ = true;
+    }
+    if (!ctrl && pressed(GLFW_KEY_E)) eraser_ = !eraser_;
     if (pressed(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(gw, GLFW_TRUE);
   }
 
@@ -529,6 +561,7 @@ class WindowApp {
 
   Options o_;
   int width_, height_;
+  std::atomic<bool> live_files_{false};  // read by the save handler on the worker thread (before worker_)
   std::unique_ptr<ps::engine::WindowPresenter> win_;
   std::unique_ptr<ps::app::PreviewWorker> worker_;  // after win_: stops before GLFW ends
   std::shared_ptr<const ps::app::PreviewSnapshot> shown_;
@@ -562,6 +595,9 @@ void setup(CLI::App& root) {
   cmd->add_option("--report", o->report, "At exit, write pen-up to preview latencies and frame times (JSON)");
   cmd->add_option("--size", o->size, "Window size WIDTHxHEIGHT");
   cmd->add_flag("--no-panel", o->no_panel, "No Dear ImGui panel over the canvas");
+  cmd->add_option("--session", o->session, "Session file: loaded at start if it exists; Ctrl+S saves it, Ctrl+O reloads it");
+  cmd->add_option("--export", o->export_path, "Ctrl+E exports the model here (.obj .off .ply .stl .glb)");
+  cmd->add_option("--import", o->import_mesh, "Start from this mesh as the base (to sculpt or deform it)");
   cmd->add_option("--speed", o->speed, "Replay speed relative to the log's clock (0: as fast as frames allow)");
   cmd->callback([o] {
     if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))

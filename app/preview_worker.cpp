@@ -50,6 +50,17 @@ void PreviewWorker::on_stroke(const Stroke& stroke) {
   submit(stroke, true);
 }
 
+void PreviewWorker::load_session(std::string path, double t) { submit(FileRequest{std::move(path), t, false}, true); }
+void PreviewWorker::import_mesh(std::string path, double t) { submit(FileRequest{std::move(path), t, true}, true); }
+
+void PreviewWorker::set_save_handler(std::function<void(const SketchSession&, const std::string&)> handler) {
+  std::lock_guard lk(m_);  // the worker reads it under the same lock's happens-before (submit)
+  save_handler_ = std::move(handler);
+  driver_.on_save = [this](const std::string& path) {
+    if (save_handler_) save_handler_(driver_.session(), path);
+  };
+}
+
 void PreviewWorker::submit(Item item, bool changes_model) {
   {
     std::lock_guard lk(m_);
@@ -104,6 +115,9 @@ void PreviewWorker::apply(const Item& item) {
           driver_.on_pen_sample(x);
         } else if constexpr (std::is_same_v<T, TimedEvent>) {
           driver_.on_action(x);
+        } else if constexpr (std::is_same_v<T, FileRequest>) {
+          if (x.import) (void)driver_.import_mesh(x.t, x.path);
+          else (void)driver_.load_session(x.t, x.path);
         } else {
           driver_.on_stroke(x);
           ++strokes_applied_;

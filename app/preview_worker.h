@@ -83,6 +83,15 @@ class PreviewWorker : public EventSink {
   void on_action(const TimedEvent& event) override;
   void on_stroke(const Stroke& stroke) override;
 
+  // UI thread: session files, queued and applied in order like every event (the driver's
+  // load_session / import_mesh: a refusal becomes a message in the next snapshot).
+  // `t`: the log time messages carry.
+  void load_session(std::string path, double t = 0.0);
+  void import_mesh(std::string path, double t = 0.0);
+  // What a `save` action does, called on the worker thread with the session as it is after
+  // every event before the action. Set it before the first event is submitted.
+  void set_save_handler(std::function<void(const SketchSession&, const std::string& path)> handler);
+
   // UI thread: the input state with every submitted action applied.
   const InputState& input() const { return input_; }
   const Camera& initial_camera() const { return initial_camera_; }
@@ -104,7 +113,12 @@ class PreviewWorker : public EventSink {
   std::size_t superseded() const;  // model changes whose snapshot was skipped for a newer one
 
  private:
-  using Item = std::variant<LogHeader, PenSample, TimedEvent, Stroke>;
+  struct FileRequest {
+    std::string path;
+    double t = 0.0;
+    bool import = false;  // else load a session
+  };
+  using Item = std::variant<LogHeader, PenSample, TimedEvent, Stroke, FileRequest>;
   void submit(Item item, bool changes_model);
   void run();
   // Applies one item to the driver (worker thread).
@@ -120,6 +134,7 @@ class PreviewWorker : public EventSink {
   SessionDriver driver_;
   std::size_t applied_ = 0, strokes_applied_ = 0;
   std::function<void()> on_published_;
+  std::function<void(const SketchSession&, const std::string&)> save_handler_;
 
   // Shared, under m_.
   mutable std::mutex m_;

@@ -19,6 +19,7 @@
 #include "input/stroke_replayer.h"
 #include "modeling/mesh_io.h"
 #include "modeling/mesh_queries.h"
+#include "modeling/session_io.h"
 
 namespace ps::app {
 
@@ -42,8 +43,10 @@ void replay_all_paced(const StrokeLog& log, EventSink& sink, const StrokeReplaye
 
 std::pair<int, int> check_replay_options(const ReplayOptions& o) {
   const auto size = parse_size(o.size);
-  if (!o.mesh.empty() && !is_mesh_extension(o.mesh))
-    throw CommandFailed(o.mesh + ": unknown mesh extension (expected .obj, .off, .ply or .stl)");
+  if (!o.mesh.empty() && !is_export_extension(o.mesh))
+    throw CommandFailed(o.mesh + ": unknown mesh extension (expected .obj, .off, .ply, .stl or .glb)");
+  if (!o.base_mesh.empty() && !o.start_session.empty())
+    throw CommandFailed("--base and --session both give the session's start: choose one");
   if (!std::isfinite(o.pace_ms) || o.pace_ms < 0.0 || o.pace_ms > 10000.0)
     throw CommandFailed("--pace-ms must lie in [0, 10000]");
   return size;
@@ -56,6 +59,12 @@ void run_replay(const StrokeLog& log, const std::string& name, const ReplayOptio
   SessionParams params;
   params.improve = !o.no_improve;
   SessionDriver driver(params);
+  // The session's start: an imported mesh or a saved session (refused: nothing is replayed).
+  if (!o.base_mesh.empty())
+    if (auto st = driver.import_mesh(0.0, o.base_mesh); !st) throw CommandFailed(st.message());
+  // (A loaded session brings its own parameters, --no-improve included.)
+  if (!o.start_session.empty())
+    if (auto st = driver.load_session(0.0, o.start_session); !st) throw CommandFailed(st.message());
 
   // Pacing only decides when events arrive (docs/stroke-log.md, "Replay").
   StrokeReplayer::PaceFn pace;
@@ -120,7 +129,9 @@ void run_replay(const StrokeLog& log, const std::string& name, const ReplayOptio
   }
 
   if (!o.mesh.empty())
-    if (auto s = write_mesh(o.mesh, st.model); !s) throw CommandFailed(s.message());
+    if (auto s = export_model(o.mesh, st.model); !s) throw CommandFailed(s.message());
+  if (!o.save_session.empty())
+    if (auto s = save_session(o.save_session, driver.session()); !s) throw CommandFailed(s.message());
   if (image)
     if (auto s = engine::write_png(o.png, *image); !s) throw CommandFailed(s.message());
   if (!o.report.empty()) {

@@ -13,6 +13,9 @@ struct ReplayOptions {
   std::string mesh, png, size = "1280x800", report;
   std::string journal;   // journal the applied events here (StrokeRecorder; refuses an existing file)
   double pace_ms = 0.0;  // wall-clock sleep before each event; never changes the model
+  std::string save_session;   // write the session file (modeling/session_io.h) here at the end
+  std::string base_mesh;      // start from this mesh as an imported base (no sections)
+  std::string start_session;  // start from this session file
   bool quiet = false;
   bool no_improve = false;
 };

@@ -5,7 +5,9 @@
 #include <type_traits>
 #include <variant>
 
+#include "modeling/mesh_io.h"
 #include "modeling/sculpt_cut.h"
+#include "modeling/session_io.h"
 #include "modeling/stroke_classify.h"
 #include "modeling/stroke_preprocess.h"
 
@@ -83,6 +85,39 @@ void SessionDriver::on_action(const TimedEvent& e) {
         }
       },
       e.event);
+}
+
+void SessionDriver::drop_pending() {
+  pending_cut_.clear();
+  pending_base_.clear();
+  pending_handle_.clear();
+  pending_target_.clear();
+  pending_roi_.reset();
+}
+
+Status SessionDriver::load_session(double t, const std::string& path) {
+  SessionLoadReport r;
+  if (auto st = ps::load_session(path, session_, &r); !st) {
+    report(t, 0, "session not loaded: " + st.message());
+    return st;
+  }
+  drop_pending();
+  if (!r.mesh_problem.empty()) report(t, 0, "warning: " + path + ": " + r.mesh_problem);
+  changed();
+  return Status::ok();
+}
+
+Status SessionDriver::import_mesh(double t, const std::string& path) {
+  auto mesh = read_mesh(path);
+  Status st = mesh ? session_.import_base(std::move(*mesh)) : mesh.status();
+  if (!st) {
+    st = Status::error("mesh not imported: " + (mesh ? path + ": " : std::string()) + st.message());
+    report(t, 0, st.message());
+    return st;
+  }
+  drop_pending();
+  changed();
+  return Status::ok();
 }
 
 void SessionDriver::on_stroke(const Stroke& stroke) {

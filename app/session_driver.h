@@ -41,6 +41,14 @@ class SessionDriver : public EventSink {
   // Called for a save action with its path (the live app saves; replay leaves it unset).
   std::function<void(const std::string& path)> on_save;
 
+  // Session files (modeling/session_io.h). Loading replaces the session (history cleared) and
+  // drops half-drawn two-stroke operations; importing makes a mesh file the base of the (empty)
+  // session. A refusal is reported as a message at log time `t` and changes nothing; a loaded
+  // session whose rebuilt model differs from its saved mesh is loaded and the difference
+  // reported as a message too.
+  Status load_session(double t, const std::string& path);
+  Status import_mesh(double t, const std::string& path);
+
  private:
   void report(double t, int line, const std::string& text);
   void sculpt_stroke(double t, const std::vector<Vec2>& pts);
@@ -50,6 +58,7 @@ class SessionDriver : public EventSink {
   VertexSelection selection_from(const std::vector<Vec2>& pts) const;
   double parameter(const std::string& name, double fallback) const;
   void changed();
+  void drop_pending();
 
   SketchSession session_;
   InputState input_;

@@ -10,6 +10,7 @@
 #include "modeling/deform_tool.h"
 #include "modeling/face_intersections.h"
 #include "modeling/mesh_improve.h"
+#include "modeling/mesh_queries.h"
 #include "modeling/sculpt_cut.h"
 #include "modeling/sculpt_extrude.h"
 #include "modeling/sculpt_smooth.h"
@@ -343,6 +344,11 @@ Status SketchSession::paint_stiffness(const StiffnessOp& op) {
   return Status::ok();
 }
 
+namespace {
+const char* const kImportedNoSections =
+    "the model is an imported mesh: it has no cross sections to add or delete (sculpt or deform it, or sketch in a new session)";
+}  // namespace
+
 void SketchSession::push(SessionState next) {
   undo_.push_back(std::move(state_));
   redo_.clear();
@@ -351,6 +357,7 @@ void SketchSession::push(SessionState next) {
 
 Status SketchSession::add_window_stroke(const std::vector<Vec2>& window_points,
                                         const Camera& camera, const Plane& plane) {
+  if (!state_.base.empty()) return Status::error(kImportedNoSections);
   auto lifted = prepare_plane_stroke(window_points, camera, plane, params_.stroke);
   if (!lifted) return lifted.status();
   if (!lifted->closed)
@@ -359,6 +366,7 @@ Status SketchSession::add_window_stroke(const std::vector<Vec2>& window_points,
 }
 
 Status SketchSession::add_section(const Plane& plane, const std::vector<Vec3>& points) {
+  if (!state_.base.empty()) return Status::error(kImportedNoSections);
   if (!(plane.normal.norm() > 0.0) || !std::isfinite(plane.offset))
     return Status::error("the plane is degenerate (zero normal or non-finite offset)");
   if (points.size() < 3) return Status::error("a cross section needs at least 3 points");
@@ -375,6 +383,7 @@ Status SketchSession::add_section(const Plane& plane, const std::vector<Vec3>& p
 }
 
 Status SketchSession::delete_section(int index) {
+  if (!state_.base.empty()) return Status::error(kImportedNoSections);
   if (index < 0 || static_cast<std::size_t>(index) >= state_.sections.curves.size()) {
     std::ostringstream m;
     m << "no section " << index << " to delete (there are " << state_.sections.curves.size() << ")";
@@ -445,49 +454,121 @@ Status SketchSession::redo() {
   return Status::ok();
 }
 
-Status SketchSession::commit(SessionState next) {
+Status SketchSession::build(const SessionParams& params, SessionState& next, ReconstructReport& report) {
   next.hints.clear();
-  ReconstructReport report;
+  if (!next.base.empty()) {
+    // An imported base: no sections; the operations apply to the mesh itself.
+    if (!next.sections.curves.empty())
+      return Status::error("a session with an imported base mesh has no cross sections");
+    TriMesh mesh = next.base;
+    std::vector<double> stiffness;
+    for (std::size_t k = 0; k < next.ops.size(); ++k)
+      if (auto st = apply_op(mesh, stiffness, next.ops[k]); !st)
+        return Status::error("operation " + std::to_string(k + 1) + " (" + session_op_name(next.ops[k]) +
+                             ") does not apply to the imported mesh: " + st.message());
+    next.sewn = SectionSet{};
+    next.model = std::move(mesh);
+    next.stiffness = std::move(stiffness);
+    return Status::ok();
+  }
   if (next.sections.curves.empty()) {
     if (!next.ops.empty())
       return Status::error("the model has been sculpted; deleting its last section would lose that work (undo the sculpting first)");
     next.sewn = next.sections;
     next.model = TriMesh{};
     next.stiffness.clear();
-  } else {
-    SewingReport sewing;
-    auto sewn = sew_curves(next.sections, SewingParams{}, &sewing);
-    if (!sewn) return Status::error("stroke rule 4: " + sewn.message());
-    ReconstructOptions ro;
-    ro.improve = false;  // improved below, within the interactive budget
-    auto mesh = reconstruct(*sewn, ro, &report);
-    if (!mesh) return mesh.status();
-    if (params_.improve) {
-      if (mesh->faces.size() <= params_.improve_max_faces) {
-        auto improved = improve_mesh(*mesh, report.curve_vertex, report.curve_edges);
-        if (improved)
-          *mesh = std::move(*improved);
-        else
-          report.warnings.push_back("mesh improvement failed, initial surface kept: " + improved.message());
-      } else {
-        report.warnings.push_back("the model has " + std::to_string(mesh->faces.size()) +
-                                  " faces: shown without refinement and smoothing");
-      }
-    }
-    // Sculpting, deformation and painting done on the previous model are applied again to the
-    // new reconstruction, in order.
-    std::vector<double> stiffness;
-    for (std::size_t k = 0; k < next.ops.size(); ++k) {
-      if (auto st = apply_op(*mesh, stiffness, next.ops[k]); !st)
-        return Status::error("the new sections would undo operation " + std::to_string(k + 1) + " (" +
-                             session_op_name(next.ops[k]) + "): " + st.message());
-    }
-    next.sewn = std::move(*sewn);
-    next.model = std::move(*mesh);
-    next.stiffness = std::move(stiffness);
-    next.hints = report.warnings;
+    return Status::ok();
   }
+  SewingReport sewing;
+  auto sewn = sew_curves(next.sections, SewingParams{}, &sewing);
+  if (!sewn) return Status::error("stroke rule 4: " + sewn.message());
+  ReconstructOptions ro;
+  ro.improve = false;  // improved below, within the interactive budget
+  auto mesh = reconstruct(*sewn, ro, &report);
+  if (!mesh) return mesh.status();
+  if (params.improve) {
+    if (mesh->faces.size() <= params.improve_max_faces) {
+      auto improved = improve_mesh(*mesh, report.curve_vertex, report.curve_edges);
+      if (improved)
+        *mesh = std::move(*improved);
+      else
+        report.warnings.push_back("mesh improvement failed, initial surface kept: " + improved.message());
+    } else {
+      report.warnings.push_back("the model has " + std::to_string(mesh->faces.size()) +
+                                " faces: shown without refinement and smoothing");
+    }
+  }
+  // Sculpting, deformation and painting done on the previous model are applied again to the
+  // new reconstruction, in order.
+  std::vector<double> stiffness;
+  for (std::size_t k = 0; k < next.ops.size(); ++k) {
+    if (auto st = apply_op(*mesh, stiffness, next.ops[k]); !st)
+      return Status::error("the new sections would undo operation " + std::to_string(k + 1) + " (" +
+                           session_op_name(next.ops[k]) + "): " + st.message());
+  }
+  next.sewn = std::move(*sewn);
+  next.model = std::move(*mesh);
+  next.stiffness = std::move(stiffness);
+  next.hints = report.warnings;
+  return Status::ok();
+}
+
+Status SketchSession::commit(SessionState next) {
+  ReconstructReport report;
+  if (auto st = build(params_, next, report); !st) return st;
   push(std::move(next));
+  report_ = std::move(report);
+  return Status::ok();
+}
+
+Status check_base_mesh(const TriMesh& mesh) {
+  if (mesh.faces.empty()) return Status::error("the mesh has no faces");
+  for (const Vec3& p : mesh.vertices)
+    if (!p.allFinite()) return Status::error("the mesh has a non-finite coordinate");
+  for (const Face& f : mesh.faces)
+    for (int v : f)
+      if (v < 0 || static_cast<std::size_t>(v) >= mesh.vertices.size())
+        return Status::error("the mesh has a face index out of range");
+  const MeshGuarantees g = check_guarantees(mesh);
+  if (!g.valid()) {
+    std::string why = g.problem();
+    if (why.empty() && !(g.topology.signed_volume > 0.0))
+      why = "it is oriented inwards (negative volume)";
+    return Status::error("the mesh cannot be a base: " + (why.empty() ? std::string("not a valid solid") : why) +
+                         " (a base must be closed, manifold, oriented outwards and free of self-intersections)");
+  }
+  return Status::ok();
+}
+
+Status SketchSession::import_base(TriMesh mesh) {
+  if (!state_.base.empty()) return Status::error("the session already has an imported base mesh (start a new session)");
+  if (!state_.sections.curves.empty() || !state_.ops.empty())
+    return Status::error("a mesh is imported into an empty session; this one has " +
+                         std::to_string(state_.sections.curves.size()) + " sections and " +
+                         std::to_string(state_.ops.size()) + " operations");
+  if (auto st = check_base_mesh(mesh); !st) return st;
+  SessionState next;
+  next.base = std::move(mesh);
+  ReconstructReport report;
+  if (auto st = build(params_, next, report); !st) return st;
+  push(std::move(next));
+  report_ = std::move(report);
+  return Status::ok();
+}
+
+Status SketchSession::load(SessionParams params, const SessionState& saved) {
+  if (!saved.base.empty())
+    if (auto st = check_base_mesh(saved.base); !st) return Status::error("base: " + st.message());
+  SessionState next;
+  next.base = saved.base;
+  next.sections = saved.sections;
+  next.ops = saved.ops;
+  ReconstructReport report;
+  if (auto st = build(params, next, report); !st) return st;
+  params_ = std::move(params);
+  state_ = std::move(next);
+  undo_.clear();
+  redo_.clear();
   report_ = std::move(report);
   return Status::ok();
 }

@@ -119,7 +119,15 @@ using SessionOp = std::variant<SculptOp, DeformOp, StiffnessOp>;
 // "cut", "tunnel", "smooth", "extrude", "deform" or "stiffness".
 const char* session_op_name(const SessionOp& op);
 
+// Whether `mesh` can be the base of a session: faces with indices in range, finite
+// coordinates, closed, manifold, oriented outwards, free of self-intersections; else the reason.
+Status check_base_mesh(const TriMesh& mesh);
+
 struct SessionState {
+  // An imported base mesh (import_base): when non-empty the model is this mesh followed by
+  // `ops`, and there are no sections (section edits are refused). Empty: the model is the
+  // reconstruction of the sections.
+  TriMesh base;
   SectionSet sections;  // the user's curves (before sewing)
   SectionSet sewn;      // the curves the model interpolates (after sewing)
   // Sculpting, deformation and stiffness painting, applied in order to the reconstruction of
@@ -156,6 +164,17 @@ class SketchSession {
   // with the operation), or paints stiffness on it. Undoable; refusals change nothing.
   Status deform(DeformOp op);
   Status paint_stiffness(const StiffnessOp& op);
+  // Makes `mesh` the base of an empty session (no sections, no operations, no base yet), to
+  // sculpt or deform without sections; undoable. Refused, naming the reason, unless the mesh is
+  // closed, manifold, consistently oriented outwards (positive volume) and free of
+  // self-intersections (check_guarantees). Afterwards adding or deleting sections is refused.
+  Status import_base(TriMesh mesh);
+  // Replaces the whole session by `params` and the state given by `saved.base`,
+  // `saved.sections` and `saved.ops` (the other fields are ignored): the model is rebuilt from
+  // them exactly as the session builds it, so the result is the model the saved session had.
+  // The undo and redo history is cleared. On a refusal (a section set that does not
+  // reconstruct, an operation that no longer applies) the session is left untouched.
+  Status load(SessionParams params, const SessionState& saved);
   // The section whose window-space polyline passes nearest to `window_point`, within
   // `radius_px`; -1 if none.
   int pick_section(const Vec2& window_point, const Camera& camera, double radius_px) const;
@@ -171,6 +190,9 @@ class SketchSession {
   const ReconstructReport& last_report() const { return report_; }
 
  private:
+  // Builds `next.sewn`, `next.model`, `next.stiffness` and `next.hints` from `next.base` or
+  // `next.sections`, then `next.ops`, with `params`.
+  static Status build(const SessionParams& params, SessionState& next, ReconstructReport& report);
   // Rebuild `next` (sew + reconstruct); on success commit it, pushing the old state on the undo
   // stack; on failure leave everything unchanged.
   Status commit(SessionState next);
