@@ -26,6 +26,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <iterator>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -467,10 +468,14 @@ class WindowApp {
     ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
     ImGui::Begin("planesketch", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoFocusOnAppearing);
     ImGui::TextUnformatted("tool");
-    static const char* const kModes[] = {"sketch", "sculpt", "cut", "tunnel", "smooth", "extrude"};
-    for (const char* m : kModes) {
+    // Two rows: sketching and sculpting, then deformation (handle and target strokes), its
+    // region of interest (lasso or brush) and stiffness painting (app/session_driver.h).
+    static const char* const kModes[] = {"sketch", "sculpt", "cut", "tunnel", "smooth", "extrude",
+                                         "deform", "roi", "stiffness"};
+    for (std::size_t i = 0; i < std::size(kModes); ++i) {
+      const char* m = kModes[i];
       if (ImGui::RadioButton(m, in.mode == m) && in.mode != m) act(panel_t_, ps::SetToolMode{m});
-      if (m != kModes[5]) ImGui::SameLine();
+      if (i != 5 && i + 1 != std::size(kModes)) ImGui::SameLine();
     }
     ImGui::Separator();
     ImGui::TextUnformatted("reference plane");
@@ -492,6 +497,11 @@ class WindowApp {
     ImGui::SetNextItemWidth(180.0f);
     if (auto v = panel_value("lambda", lambda != in.parameters.end() ? lambda->second : ps::SessionParams{}.lambda, true, 0.0f, 1.0f))
       act(panel_t_, ps::SetParameter{"lambda", *v});
+    // The value painted in "stiffness" mode (1: as stiff as lambda 1 there, 0: as lambda 0).
+    const auto stiffness = in.parameters.find("stiffness");
+    ImGui::SetNextItemWidth(180.0f);
+    if (auto v = panel_value("stiffness", stiffness != in.parameters.end() ? stiffness->second : 1.0, true, 0.0f, 1.0f))
+      act(panel_t_, ps::SetParameter{"stiffness", *v});
     const auto& st = shown_->state;
     ImGui::Text("%zu sections, %zu faces%s", st.sections.curves.size(), st.model.faces.size(),
                 worker_->caught_up() ? "" : ", rebuilding");

@@ -6,6 +6,7 @@
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
@@ -213,8 +214,13 @@ Result<TriMesh> union_snapped_solids(const std::vector<SnappedSolid>& solids, co
       if (find(i) != root) continue;
       level.push_back(to_surface_mesh(solids[i], planes));
       ids.push_back(i);
-      if (has_degenerate_face(level.back()))
-        return Result<TriMesh>::error("frustum " + std::to_string(i) + " has a degenerate face after snapping");
+      if (level.back().is_empty() || !CGAL::is_valid_polygon_mesh(level.back()) || !CGAL::is_closed(level.back()) ||
+          has_degenerate_face(level.back()))
+        return Result<TriMesh>::error("frustum " + std::to_string(i) + " is degenerate after snapping");
+      // Corefinement's input must not intersect itself (it crashed on a real data set where
+      // snapping made a frustum checked in doubles touch itself); exact test, small meshes.
+      if (PMP::does_self_intersect(level.back()))
+        return Result<TriMesh>::error("frustum " + std::to_string(i) + " intersects itself after snapping");
     }
     while (level.size() > 1) {
       std::vector<SurfaceMesh> next;
@@ -228,6 +234,11 @@ Result<TriMesh> union_snapped_solids(const std::vector<SnappedSolid>& solids, co
         }
         if (!ok)
           return Result<TriMesh>::error("union of frusta would not be 2-manifold (frustum " + std::to_string(ids[k + 1]) + ")");
+        // CGAL's next union assumes a closed, non-empty operand (it crashed in its orientation
+        // test on a real data set otherwise).
+        level[k].collect_garbage();
+        if (level[k].is_empty() || !CGAL::is_closed(level[k]) || has_degenerate_face(level[k]))
+          return Result<TriMesh>::error("union of frusta is not closed (frustum " + std::to_string(ids[k + 1]) + ")");
         next.push_back(std::move(level[k]));
         next_ids.push_back(ids[k]);
       }
