@@ -174,7 +174,9 @@ bool self_intersects(const TriMesh& m) {
 TriMesh checked_prism(const PieceCache& pc, const SectionPiece& piece, const Zone& zone, int k, double c0, double c1,
                       const CylinderOptions& opt) {
   for (const double first : {1.0, 0.25, 0.0625}) {
-    TriMesh m = prism(pc, k, c0, c1, perturbed_top(pc, piece, zone, opt, first));
+    const std::vector<Vec2> top = perturbed_top(pc, piece, zone, opt, first);
+    if (top == pc.points) break;  // not pulled: the straight prism below
+    TriMesh m = prism(pc, k, c0, c1, top);
     if (!self_intersects(m)) return m;
   }
   return prism(pc, k, c0, c1, pc.points);
