@@ -63,6 +63,8 @@ TriMesh to_tri_mesh(SurfaceMesh& sm) {
 
 }  // namespace
 
+namespace {
+
 // The operand check of union_solids: check_solid without its signed-volume test in absolute
 // coordinates (far from the origin that sum cancels to noise; prisms are outward by
 // construction), the volume taken relative to the first vertex instead.
@@ -90,6 +92,8 @@ Status check_primitive(const TriMesh& m, std::size_t index) {
   if (!intersecting_face_pairs(m.vertices, m.faces, all).empty()) return Status::error(which + " intersects itself");
   return Status::ok();
 }
+
+}  // namespace
 
 // Each primitive is checked first (closed, oriented, positive volume, no self-intersection):
 // CGAL's preconditions are compiled out, and corefinement fed a self-intersecting prism
