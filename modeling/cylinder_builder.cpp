@@ -2,6 +2,8 @@
 // triangulations (exact predicates) of the section pieces.
 #include "modeling/cylinder_builder.h"
 
+#include "modeling/face_intersections.h"
+
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
@@ -78,9 +80,11 @@ struct PieceCache {
 };
 
 // The top's 2D points, with points on side faces that carry a section pulled into the zone
-// (thesis 4.3). Halves the pull until no cap triangle flips.
+// (thesis 4.3). Halves the pull (starting from `first_scale` of it) until no cap triangle flips
+// and no wall edge reverses its direction (a pulled point moved past its unpulled neighbour
+// folds the wall quad between them: a self-intersecting prism, stress seed 281).
 std::vector<Vec2> perturbed_top(const PieceCache& pc, const SectionPiece& piece, const Zone& zone,
-                                const CylinderOptions& opt) {
+                                const CylinderOptions& opt, double first_scale = 1.0) {
   const int k = piece.axis;
   const int ax[2] = {(k + 1) % 3, (k + 2) % 3};
   std::vector<Vec2> top = pc.points;
@@ -96,7 +100,7 @@ std::vector<Vec2> perturbed_top(const PieceCache& pc, const SectionPiece& piece,
     lo = lo.cwiseMin(q);
     hi = hi.cwiseMax(q);
   }
-  double scale = 1.0;
+  double scale = first_scale;
   for (int attempt = 0; attempt < 12; ++attempt, scale *= 0.5) {
     top = pc.points;
     for (std::size_t i = 0; i < top.size(); ++i) {
@@ -120,6 +124,12 @@ std::vector<Vec2> perturbed_top(const PieceCache& pc, const SectionPiece& piece,
         break;
       }
     }
+    for (const auto& r : pc.loop_range)
+      for (int i = r[0]; ok && i < r[1]; ++i) {
+        const int j = i + 1 == r[1] ? r[0] : i + 1;
+        const Vec2 b = pc.points[uz(j)] - pc.points[uz(i)], t = top[uz(j)] - top[uz(i)];
+        if (!(t.dot(b) > 1e-3 * b.squaredNorm())) ok = false;
+      }
     if (ok) return top;
   }
   return pc.points;
@@ -148,6 +158,28 @@ TriMesh prism(const PieceCache& pc, int k, double c0, double c1, const std::vect
   if (c1 < c0)
     for (auto& f : m.faces) std::swap(f[1], f[2]);
   return m;
+}
+
+bool self_intersects(const TriMesh& m) {
+  std::vector<int> all(m.faces.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  return !intersecting_face_pairs(m.vertices, m.faces, all).empty();
+}
+
+// The prism of a zone's last segment with the perturbed top, checked: the top test above is
+// local (caps and wall edges in 2D), so the whole prism is tested for self-intersection and
+// rebuilt with a quarter, a sixteenth, then none of the pull (a straight prism over a simple
+// piece cannot intersect itself). Corefinement's contract needs valid operands; its
+// preconditions are compiled out.
+TriMesh checked_prism(const PieceCache& pc, const SectionPiece& piece, const Zone& zone, int k, double c0, double c1,
+                      const CylinderOptions& opt) {
+  for (const double first : {1.0, 0.25, 0.0625}) {
+    const std::vector<Vec2> top = perturbed_top(pc, piece, zone, opt, first);
+    if (top == pc.points) break;  // not pulled: the straight prism below
+    TriMesh m = prism(pc, k, c0, c1, top);
+    if (!self_intersects(m)) return m;
+  }
+  return prism(pc, k, c0, c1, pc.points);
 }
 
 }  // namespace
@@ -200,7 +232,7 @@ std::vector<ZonePrimitives> build_cylinders(const Partition& part, const Cylinde
         if (z.type == ZoneType::kBody) {
           // === Body zone: Eq. 4.1 with the 4.3 perturbation.
           const double h = z.extent(k) * (1.0 - opt.height_margin);
-          out[zi].solids.push_back(prism(pc, k, c0, c0 + dir * h, perturbed_top(pc, piece, z, opt)));
+          out[zi].solids.push_back(checked_prism(pc, piece, z, k, c0, c0 + dir * h, opt));
           continue;
         }
         // === End zone: stretch across empty zones (4.4), one segment per zone.
@@ -213,7 +245,7 @@ std::vector<ZonePrimitives> build_cylinders(const Partition& part, const Cylinde
           const bool last = zz.on_box[uz(far_face)] || (!first && zz.type != ZoneType::kEmpty);
           if (last) {
             const double h = zz.extent(k) * (1.0 - opt.height_margin);
-            out[id].solids.push_back(prism(pc, k, bottom, bottom + dir * h, perturbed_top(pc, piece, zz, opt)));
+            out[id].solids.push_back(checked_prism(pc, piece, zz, k, bottom, bottom + dir * h, opt));
             break;
           }
           const double top = f % 2 == 0 ? zz.max[k] : zz.min[k];

@@ -501,6 +501,12 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
   // === Stitch
   t = Clock::now();
   mesh = stitch_zones(*part, solids, tol);
+  // Rounding can leave two distinct vertices almost on top of each other; their fans are where
+  // a result made of valid zone solids can cross itself. Merged when that removes the
+  // crossing (the topology is checked below), refused otherwise.
+  if (!repair_close_vertices(mesh, 1e-9 * diag))
+    return Result<TriMesh>::error(
+        "reconstruction failed: the stitched surface intersects itself where two vertices almost coincide");
   for (std::size_t z = 0; z < prims.size(); ++z)
     if (!prims[z].solids.empty()) cache.emplace(keys[z], CacheEntry{prims[z].solids, solids[z]});
   }

@@ -3,6 +3,7 @@
 // on a soup, which no CGAL function does on a soup with tolerance).
 #include "modeling/zone_stitch.h"
 
+#include "modeling/face_intersections.h"
 #include "modeling/section_validate.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -300,6 +301,67 @@ TriMesh weld_vertices(const TriMesh& mesh, double tol) {
     }
   }
   return apply_merge(exact, par2);
+}
+
+bool repair_close_vertices(TriMesh& m, double tol) {
+  const std::size_t n = m.vertices.size();
+  std::vector<int> parent(n);
+  for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<int>(i);
+  auto find = [&](int v) {
+    while (parent[uz(v)] != v) v = parent[uz(v)] = parent[uz(parent[uz(v)])];
+    return v;
+  };
+  // Grid hash with cells of size tol: a vertex within tol of another lies in a neighbouring
+  // cell. (A sweep along one axis is quadratic here: thousands of vertices share the
+  // coordinate of a zone face.)
+  if (!(tol > 0)) return true;
+  std::unordered_map<CellKey, std::vector<int>, CellHash> grid;
+  grid.reserve(n);
+  for (std::size_t v = 0; v < n; ++v) grid[cell_of(m.vertices[v], tol)].push_back(static_cast<int>(v));
+  std::vector<char> close(n, 0);
+  bool any = false;
+  for (std::size_t v = 0; v < n; ++v) {
+    const Vec3& p = m.vertices[v];
+    const CellKey c = cell_of(p, tol);
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const auto it = grid.find({c.x + dx, c.y + dy, c.z + dz});
+          if (it == grid.end()) continue;
+          for (int w : it->second) {
+            if (uz(w) <= v || (m.vertices[uz(w)] - p).norm() > tol) continue;
+            close[v] = close[uz(w)] = 1;
+            const int ra = find(static_cast<int>(v)), rb = find(w);
+            if (ra != rb) parent[uz(std::max(ra, rb))] = std::min(ra, rb);
+            any = true;
+          }
+        }
+  }
+  if (!any) return true;
+  auto around = [](const TriMesh& mesh, const std::vector<char>& mark) {
+    std::vector<int> q;
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+      for (int v : mesh.faces[f])
+        if (mark[uz(v)]) {
+          q.push_back(static_cast<int>(f));
+          break;
+        }
+    return q;
+  };
+  if (intersecting_face_pairs(m.vertices, m.faces, around(m, close)).empty()) return true;
+  TriMesh merged = apply_merge(m, parent);
+  // apply_merge numbers the roots in index order; mark the images of the merged vertices.
+  std::vector<int> image(n, -1);
+  int next = 0;
+  for (std::size_t v = 0; v < n; ++v)
+    if (find(static_cast<int>(v)) == static_cast<int>(v)) image[v] = next++;
+  std::vector<char> mark(merged.vertices.size(), 0);
+  for (std::size_t v = 0; v < n; ++v)
+    if (close[v]) mark[uz(image[uz(find(static_cast<int>(v)))])] = 1;
+  const bool clean = intersecting_face_pairs(merged.vertices, merged.faces, around(merged, mark)).empty();
+  m = std::move(merged);
+  canonicalize(m);
+  return clean;
 }
 
 void canonicalize(TriMesh& m) {

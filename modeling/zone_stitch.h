@@ -39,6 +39,16 @@ TriMesh stitch_polyhedral_zones(const PolyPartition& partition, const std::vecto
 // degenerate and unreferenced vertices.
 TriMesh weld_vertices(const TriMesh& mesh, double tol);
 
+// Local self-intersection check and repair after rounding. Rounding exact results can leave
+// two distinct vertices within a few 1e-17 of each other whose fans cross (recon_kernel corpus
+// seed valid_three_axes); elsewhere rounding moves points by far less than the features. The
+// faces around every vertex that has another vertex within `tol` are tested
+// (intersecting_face_pairs); if one intersects, such vertices are merged (smallest index wins,
+// degenerate faces dropped) and the faces around the merged vertices are tested again.
+// Returns false when an intersection remains (the mesh is then left merged; the caller refuses
+// it). The caller checks the topology afterwards.
+bool repair_close_vertices(TriMesh& mesh, double tol);
+
 // Canonical order: vertices sorted by (x, y, z), each face rotated to start at its smallest
 // index, faces sorted. Two meshes with the same triangles become bit-identical.
 void canonicalize(TriMesh& mesh);

@@ -152,12 +152,11 @@ inline SectionSet decode_kernel_sections(const std::uint8_t* data, std::size_t s
 // oriented, with the report's per-vertex flags sized to it; with `no_self_intersection` also
 // free of self-intersections (the whole contract of reconstruct.h).
 //
-// Self-intersections are checked only on request because of a known, not yet fixed defect
-// (tests/recon_kernel_fuzz_corpus_test.cpp, DISABLED_KnownSelfIntersection): where three
-// primitives of one zone meet almost at one point, the zone union (inexact constructions,
-// one corefinement after the other) leaves two vertices a few 1e-17 apart whose fans cross.
-// Fatal by default it would stop every fuzzing run at that one input; the libFuzzer target
-// makes it fatal with PLANESKETCH_FUZZ_STRICT=1.
+// Self-intersections are checked only on request (a whole-mesh test per input slows fuzzing
+// down); the libFuzzer target makes them fatal with PLANESKETCH_FUZZ_STRICT=1. The defect that
+// motivated this (two vertices a few 1e-17 apart with crossing fans where three primitives of
+// one zone meet almost at one point) is repaired since (repair_close_vertices,
+// modeling/zone_stitch.h; tests/recon_kernel_fuzz_corpus_test.cpp, KnownSelfIntersection).
 inline std::string check_recon_kernel_bytes(const std::uint8_t* data, std::size_t size, bool no_self_intersection = false) {
   const SectionSet s = decode_kernel_sections(data, size);
   ReconstructOptions o;

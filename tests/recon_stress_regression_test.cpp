@@ -1,0 +1,144 @@
+// Regression cases of the 1000-case reconstruction stress run (bench/recon_stress_bench.cpp,
+// bench/results/stress.md): seeds whose clean input crashed (281, 845) or hung (104, 293, 353,
+// 605, 722, 739, 869) inside CGAL's corefinement in the zone union. Each case is generated as
+// the bench generates it (`--max-planes 4 --points 24 80`, case 0 of a run is clean) and run
+// through `planesketch reconstruct --no-improve --threads 1` in a child process with a
+// watchdog, so a crash or a hang fails the test instead of ending or blocking the suite. The
+// case must end in an ok result meeting the guarantees, or in a refusal with a message.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "modeling/contour_io.h"
+#include "modeling/mesh_io.h"
+#include "modeling/mesh_queries.h"
+#include "modeling/section_generator.h"
+#include "modeling/zone_union.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kWatchdogSeconds = 20.0;  // each case takes under 2 s on the 2-core VM
+
+struct Outcome {
+  bool timed_out = false;
+  int status = 0;
+};
+
+Outcome run_with_watchdog(const std::vector<std::string>& argv, const std::string& err_path) {
+  Outcome r;
+  const auto t0 = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    if (!std::freopen("/dev/null", "w", stdout) || !std::freopen(err_path.c_str(), "w", stderr)) _exit(126);
+    std::vector<char*> cargv;
+    for (const auto& a : argv) cargv.push_back(const_cast<char*>(a.c_str()));
+    cargv.push_back(nullptr);
+    execv(cargv[0], cargv.data());
+    _exit(127);
+  }
+  if (pid < 0) {
+    r.status = -1;
+    return r;
+  }
+  for (;;) {
+    if (waitpid(pid, &r.status, WNOHANG) == pid) return r;
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > kWatchdogSeconds) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &r.status, 0);
+      r.timed_out = true;
+      return r;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
+std::string last_line(const std::string& path) {
+  std::ifstream f(path);
+  std::string line, last;
+  while (std::getline(f, line))
+    if (!line.empty()) last = line;
+  return last;
+}
+
+// Case 0 of `recon_stress_bench --first-seed seed --max-planes 4 --points 24 80`.
+ps::SectionSet stress_case(std::uint64_t seed) {
+  ps::GeneratorOptions g;
+  g.seed = seed;
+  g.orthogonal_planes = 2 + static_cast<int>(seed % 3);
+  g.min_curve_points = 24;
+  g.max_curve_points = 80;
+  g.oblique_planes = 0;
+  return ps::generate_sections(g).sections;
+}
+
+class StressSeed : public ::testing::TestWithParam<int> {};
+
+TEST_P(StressSeed, EndsOkOrRefusedWithinTheWatchdog) {
+  const auto seed = static_cast<std::uint64_t>(GetParam());
+  const fs::path dir = fs::temp_directory_path() / ("ps_stress_regression_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string base = (dir / ("case" + std::to_string(seed))).string();
+  const std::string in = base + ".json", out = base + ".off", err = base + ".err";
+  const ps::SectionSet sections = stress_case(seed);
+  {
+    std::ofstream f(in);
+    f << ps::format_contour_json(sections);
+  }
+  const Outcome r = run_with_watchdog({PLANESKETCH_BINARY, "reconstruct", in, "-o", out, "--threads", "1", "--no-improve"}, err);
+  ASSERT_FALSE(r.timed_out) << "seed " << seed << " hung (over " << kWatchdogSeconds << " s)";
+  ASSERT_FALSE(WIFSIGNALED(r.status)) << "seed " << seed << " crashed: " << strsignal(WTERMSIG(r.status));
+  ASSERT_TRUE(WIFEXITED(r.status));
+  if (WEXITSTATUS(r.status) != 0) {
+    const std::string message = last_line(err);
+    EXPECT_NE(message.find("reconstruction failed"), std::string::npos) << "seed " << seed << ": " << message;
+  } else {
+    auto mesh = ps::read_mesh(out);
+    ASSERT_TRUE(mesh) << mesh.message();
+    const auto g = ps::check_guarantees(*mesh);
+    EXPECT_TRUE(g.valid()) << "seed " << seed << ": " << g.problem();
+    const auto pts = sections.all_points();
+    const double diag = ps::bounding_box(pts).diagonal();
+    EXPECT_LE(ps::max_distance_to_surface(*mesh, pts), 1e-6 * diag) << "seed " << seed;
+  }
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+}
+
+// The crashing seeds first, then the hanging ones.
+INSTANTIATE_TEST_SUITE_P(CrashedOrHung, StressSeed, ::testing::Values(281, 845, 104, 293, 353, 605, 722, 739, 869));
+
+// Two unit cubes overlapping in one mesh: closed, oriented, positive volume, but intersecting
+// itself. The zone union must refuse it (corefinement's contract) instead of corefining it.
+ps::TriMesh cube(const ps::Vec3& o) {
+  ps::TriMesh m;
+  for (int i = 0; i < 8; ++i) m.vertices.push_back(o + ps::Vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1));
+  m.faces = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+             {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return m;
+}
+
+TEST(ZoneUnion, RefusesASelfIntersectingPrimitive) {
+  ps::TriMesh two = cube(ps::Vec3::Zero());
+  const ps::TriMesh b = cube(ps::Vec3(0.5, 0.5, 0.5));
+  for (const auto& v : b.vertices) two.vertices.push_back(v);
+  for (const auto& f : b.faces) two.faces.push_back({f[0] + 8, f[1] + 8, f[2] + 8});
+  const auto ok = ps::union_solids({cube(ps::Vec3(3, 0, 0)), cube(ps::Vec3(3.5, 0, 0))});
+  ASSERT_TRUE(ok) << ok.message();
+  EXPECT_TRUE(ps::check_guarantees(*ok).valid());
+  const auto u = ps::union_solids({cube(ps::Vec3(3, 0, 0)), two});
+  ASSERT_FALSE(u);
+  EXPECT_NE(u.message().find("primitive 1 intersects itself"), std::string::npos) << u.message();
+}
+
+}  // namespace
