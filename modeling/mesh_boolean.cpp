@@ -268,11 +268,15 @@ Result<TriMesh> union_snapped_solids(const std::vector<SnappedSolid>& solids, co
       std::vector<std::size_t> next_ids;
       for (std::size_t k = 0; k + 1 < level.size(); k += 2) {
         bool ok = false;
+        // Into a fresh mesh: CGAL 5.5's union written over its first operand looped forever
+        // on some inputs (see union_solids).
+        SurfaceMesh united;
         try {
-          ok = PMP::corefine_and_compute_union(level[k], level[k + 1], level[k]);
+          ok = PMP::corefine_and_compute_union(level[k], level[k + 1], united);
         } catch (const std::exception& e) {
           return Result<TriMesh>::error(std::string("union of frusta failed: ") + e.what());
         }
+        level[k] = std::move(united);
         if (!ok)
           return Result<TriMesh>::error("union of frusta would not be 2-manifold (frustum " + std::to_string(ids[k + 1]) + ")");
         // CGAL's next union assumes a closed, non-empty operand (it crashed in its orientation
