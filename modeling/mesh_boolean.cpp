@@ -37,6 +37,28 @@ SurfaceMesh to_surface_mesh(const TriMesh& m) {
   return sm;
 }
 
+// Every index stored in the mesh names an existing element. CGAL 5.5's corefinement returned
+// `true` on a real data set (CSL Elephant) with a result whose connectivity held a null index;
+// the next exact predicate on it read 34 GB past a property array and segfaulted. Checked
+// before anything dereferences a union's output; linear in the mesh size.
+bool sound_connectivity(const SurfaceMesh& sm) {
+  const auto nv = sm.num_vertices(), nh = sm.num_halfedges(), nf = sm.num_faces();
+  for (auto h : sm.halfedges()) {
+    const auto nx = sm.next(h), op = sm.opposite(h);
+    const auto v = sm.target(h);
+    const auto f = sm.face(h);
+    if (!nx.is_valid() || nx.idx() >= nh || !op.is_valid() || op.idx() >= nh || !v.is_valid() || v.idx() >= nv ||
+        sm.is_removed(nx) || sm.is_removed(v))
+      return false;
+    if (f.is_valid() && (f.idx() >= nf || sm.is_removed(f))) return false;
+  }
+  for (auto f : sm.faces()) {
+    const auto h = sm.halfedge(f);
+    if (!h.is_valid() || h.idx() >= nh || sm.is_removed(h) || sm.face(h) != f) return false;
+  }
+  return CGAL::is_valid_polygon_mesh(sm);
+}
+
 TriMesh to_tri_mesh(SurfaceMesh& sm) {
   sm.collect_garbage();
   TriMesh m;
@@ -116,6 +138,8 @@ Result<TriMesh> union_solids(const std::vector<TriMesh>& solids) {
       return Result<TriMesh>::error(std::string("union of primitives failed: ") + e.what());
     }
     if (!ok) return Result<TriMesh>::error("union of primitives would not be 2-manifold (primitive " + std::to_string(i) + ")");
+    if (!sound_connectivity(out))
+      return Result<TriMesh>::error("union of primitives gave a corrupt mesh (primitive " + std::to_string(i) + ")");
     acc = std::move(out);
   }
   return to_tri_mesh(acc);
@@ -281,6 +305,8 @@ Result<TriMesh> union_snapped_solids(const std::vector<SnappedSolid>& solids, co
           return Result<TriMesh>::error("union of frusta would not be 2-manifold (frustum " + std::to_string(ids[k + 1]) + ")");
         // CGAL's next union assumes a closed, non-empty operand (it crashed in its orientation
         // test on a real data set otherwise).
+        if (!sound_connectivity(level[k]))
+          return Result<TriMesh>::error("union of frusta gave a corrupt mesh (frustum " + std::to_string(ids[k + 1]) + ")");
         level[k].collect_garbage();
         if (level[k].is_empty() || !CGAL::is_closed(level[k]) || has_degenerate_face(level[k]))
           return Result<TriMesh>::error("union of frusta is not closed (frustum " + std::to_string(ids[k + 1]) + ")");
@@ -373,6 +399,7 @@ Result<TriMesh> mesh_boolean(const TriMesh& a, const TriMesh& b, BooleanOp op, b
     return Result<TriMesh>::error(std::string("Boolean operation failed: ") + e.what());
   }
   if (!ok) return Result<TriMesh>::error("Boolean operation refused: the result would not be 2-manifold");
+  if (!sound_connectivity(out)) return Result<TriMesh>::error("Boolean operation failed: CGAL returned a corrupt mesh");
   TriMesh m = to_tri_mesh(out);
   // Rounding the exact result to doubles can, in near-degenerate spots, fold a sliver. Faces of
   // `a` that came through unchanged (same corners, bit for bit) were already free of
