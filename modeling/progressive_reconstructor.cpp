@@ -372,6 +372,90 @@ Result<TriMesh> ProgressiveReconstructor::remove(int curve, ReconstructReport* r
   return update(s, report);
 }
 
+// === Chapter 4: axis planes, cuboid zones of the grid, per-zone unions cached by primitives.
+// `next_cache` receives every zone's entry (the caller commits it with the rest of the state).
+Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSections& scaled, const Box3& box,
+                                                           double tol, ReconstructReport& rep,
+                                                           const std::function<void(const char*, double)>& progress,
+                                                           std::multimap<std::uint64_t, CacheEntry>& next_cache) const {
+  const double diag = box.diagonal();
+  auto t = Clock::now();
+  auto part = partition_zones(scaled, box);
+  if (!part) return part.status();
+  count_zones(*part, rep);
+  rep.timings.partition_ms = ms_since(t);
+  progress("partition", 1.0);
+
+  // === Primitives
+  t = Clock::now();
+  const std::vector<ZonePrimitives> prims = build_cylinders(*part);
+  for (const auto& z : prims) rep.primitives += static_cast<int>(z.solids.size());
+  rep.timings.primitives_ms = ms_since(t);
+  progress("primitives", 1.0);
+
+  // === Per-zone unions: cached, the rest in parallel; merged in zone order.
+  t = Clock::now();
+  std::vector<TriMesh> solids(prims.size());
+  std::vector<std::uint64_t> keys(prims.size(), 0);
+  std::vector<int> todo;
+  for (std::size_t z = 0; z < prims.size(); ++z) {
+    if (prims[z].solids.empty()) continue;
+    keys[z] = hash_meshes(prims[z].solids);
+    bool hit = false;
+    for (auto [it, end] = cache_.equal_range(keys[z]); it != end; ++it)
+      if (same_meshes(it->second.primitives, prims[z].solids)) {
+        solids[z] = it->second.solid;
+        hit = true;
+        break;
+      }
+    if (!hit) todo.push_back(static_cast<int>(z));
+  }
+  std::vector<std::string> errors(todo.size());
+  std::atomic<int> done{0};
+  parallel_over(todo.size(), options_.threads, [&](std::size_t i) {
+    const std::size_t z = uz(todo[i]);
+    // An intermediate union can be non-manifold (two primitives touching along an edge)
+    // even when the whole union is not; retry in other fixed orders (deterministic).
+    auto u = union_solids(prims[z].solids);
+    const std::size_t count = prims[z].solids.size();
+    // At most two retries (one rotation, then reversed): a refusal must stay quick.
+    for (std::size_t rot = 1; !u && rot <= 2 && count > 2; ++rot) {
+      std::vector<TriMesh> order(prims[z].solids);
+      if (rot == 1)
+        std::rotate(order.begin(), order.begin() + 1, order.end());
+      else
+        std::reverse(order.begin(), order.end());
+      u = union_solids(order);
+    }
+    if (u) {
+      solids[z] = std::move(*u);
+      canonicalize(solids[z]);
+    }
+    else
+      errors[i] = "zone " + std::to_string(z) + ": " + u.message();
+    ++done;
+  });
+  for (const auto& e : errors)
+    if (!e.empty()) return Result<TriMesh>::error("reconstruction failed: " + e);
+  rep.zones_recomputed = static_cast<int>(todo.size());
+  rep.timings.union_ms = ms_since(t);
+  progress("union", 1.0);
+
+  // === Stitch
+  t = Clock::now();
+  TriMesh mesh = stitch_zones(*part, solids, tol);
+  // Rounding can leave two distinct vertices almost on top of each other; their fans are where
+  // a result made of valid zone solids can cross itself. Merged when that removes the
+  // crossing (the topology is checked below), refused otherwise.
+  if (!repair_close_vertices(mesh, 1e-9 * diag))
+    return Result<TriMesh>::error(
+        "reconstruction failed: the stitched surface intersects itself where two vertices almost coincide");
+  for (std::size_t z = 0; z < prims.size(); ++z)
+    if (!prims[z].solids.empty()) next_cache.emplace(keys[z], CacheEntry{prims[z].solids, solids[z]});
+  rep.timings.stitch_ms += ms_since(t);
+  return mesh;
+}
+
 Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, ReconstructReport* report) {
   const auto t_total = Clock::now();
   ReconstructReport rep;
@@ -437,78 +521,10 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
     if (!built) return built.status();
     mesh = std::move(*built);
   } else {
-  auto part = partition_zones(scaled, box);
-  if (!part) return part.status();
-  count_zones(*part, rep);
-  rep.timings.partition_ms = ms_since(t);
-  progress("partition", 1.0);
-
-  // === Primitives
-  t = Clock::now();
-  const std::vector<ZonePrimitives> prims = build_cylinders(*part);
-  for (const auto& z : prims) rep.primitives += static_cast<int>(z.solids.size());
-  rep.timings.primitives_ms = ms_since(t);
-  progress("primitives", 1.0);
-
-  // === Per-zone unions: cached, the rest in parallel; merged in zone order.
-  t = Clock::now();
-  std::vector<TriMesh> solids(prims.size());
-  std::vector<std::uint64_t> keys(prims.size(), 0);
-  std::vector<int> todo;
-  for (std::size_t z = 0; z < prims.size(); ++z) {
-    if (prims[z].solids.empty()) continue;
-    keys[z] = hash_meshes(prims[z].solids);
-    bool hit = false;
-    for (auto [it, end] = cache_.equal_range(keys[z]); it != end; ++it)
-      if (same_meshes(it->second.primitives, prims[z].solids)) {
-        solids[z] = it->second.solid;
-        hit = true;
-        break;
-      }
-    if (!hit) todo.push_back(static_cast<int>(z));
-  }
-  std::vector<std::string> errors(todo.size());
-  std::atomic<int> done{0};
-  parallel_over(todo.size(), options_.threads, [&](std::size_t i) {
-    const std::size_t z = uz(todo[i]);
-    // An intermediate union can be non-manifold (two primitives touching along an edge)
-    // even when the whole union is not; retry in other fixed orders (deterministic).
-    auto u = union_solids(prims[z].solids);
-    const std::size_t count = prims[z].solids.size();
-    // At most two retries (one rotation, then reversed): a refusal must stay quick.
-    for (std::size_t rot = 1; !u && rot <= 2 && count > 2; ++rot) {
-      std::vector<TriMesh> order(prims[z].solids);
-      if (rot == 1)
-        std::rotate(order.begin(), order.begin() + 1, order.end());
-      else
-        std::reverse(order.begin(), order.end());
-      u = union_solids(order);
-    }
-    if (u) {
-      solids[z] = std::move(*u);
-      canonicalize(solids[z]);
-    }
-    else
-      errors[i] = "zone " + std::to_string(z) + ": " + u.message();
-    ++done;
-  });
-  for (const auto& e : errors)
-    if (!e.empty()) return Result<TriMesh>::error("reconstruction failed: " + e);
-  rep.zones_recomputed = static_cast<int>(todo.size());
-  rep.timings.union_ms = ms_since(t);
-  progress("union", 1.0);
-
-  // === Stitch
-  t = Clock::now();
-  mesh = stitch_zones(*part, solids, tol);
-  // Rounding can leave two distinct vertices almost on top of each other; their fans are where
-  // a result made of valid zone solids can cross itself. Merged when that removes the
-  // crossing (the topology is checked below), refused otherwise.
-  if (!repair_close_vertices(mesh, 1e-9 * diag))
-    return Result<TriMesh>::error(
-        "reconstruction failed: the stitched surface intersects itself where two vertices almost coincide");
-  for (std::size_t z = 0; z < prims.size(); ++z)
-    if (!prims[z].solids.empty()) cache.emplace(keys[z], CacheEntry{prims[z].solids, solids[z]});
+    auto built = reconstruct_grid(scaled, box, tol, rep, progress, cache);
+    t = Clock::now();
+    if (!built) return built.status();
+    mesh = std::move(*built);
   }
   const MeshTopology topo = mesh_topology(mesh);
   if (!topo.closed || !topo.manifold())

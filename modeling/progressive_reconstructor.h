@@ -11,6 +11,7 @@
 // in zone order, so the same set of sections gives the bit-identical mesh whatever order they
 // were added in (given the same box).
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <vector>
@@ -21,6 +22,8 @@
 #include "modeling/status.h"
 
 namespace ps {
+
+struct ValidatedSections;
 
 class ProgressiveReconstructor {
  public:
@@ -47,6 +50,9 @@ class ProgressiveReconstructor {
     std::vector<TriMesh> primitives;
     TriMesh solid;
   };
+  Result<TriMesh> reconstruct_grid(const ValidatedSections& scaled, const Box3& box, double tol, ReconstructReport& rep,
+                                   const std::function<void(const char*, double)>& progress,
+                                   std::multimap<std::uint64_t, CacheEntry>& next_cache) const;
   ReconstructOptions options_;
   SectionSet sections_;
   TriMesh mesh_;
