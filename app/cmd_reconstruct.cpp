@@ -1,22 +1,24 @@
-// planesketch reconstruct IN -o OUT.(obj|off|ply|stl) [--report R.json] [--no-improve]
+// planesketch reconstruct IN -o OUT.(obj|off|ply|stl) [--report R.json] [--no-improve] [--edits E.json]
 // Reads cross sections (contour JSON, CSL or .contour), reconstructs a closed surface and writes
 // it with a JSON report (docs: ../shared/docs/contours.md, docs/reconstruction.md).
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
 #include "modeling/contour_io.h"
 #include "modeling/mesh_io.h"
 #include "modeling/mesh_queries.h"
+#include "modeling/progressive_reconstructor.h"
 #include "modeling/reconstruct.h"
 
 namespace {
 
 struct Options {
-  std::string input, output, report;
+  std::string input, output, report, edits;
   bool no_improve = false;
   int threads = 0;
   bool quiet = false;
@@ -63,8 +65,18 @@ int run(const Options& o) {
       last_stage = stage;
     }
   };
+  std::vector<ps::TopologyEdit> edits;
+  if (!o.edits.empty()) {
+    std::ifstream f(o.edits);
+    if (!f) throw ps::app::CommandFailed(o.edits + ": cannot read the edits file");
+    const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    auto parsed = ps::parse_topology_edits(text);
+    if (!parsed) throw ps::app::CommandFailed(o.edits + ": " + parsed.message());
+    edits = std::move(*parsed);
+  }
   ps::ReconstructReport rr;
-  auto mesh = ps::reconstruct(*sections, ro, &rr);
+  ps::ProgressiveReconstructor reconstructor(ro);
+  auto mesh = reconstructor.update(*sections, edits, &rr);
   if (!mesh) throw ps::app::CommandFailed(o.input + ": " + mesh.message());
   for (const auto& w : rr.warnings) std::cerr << "planesketch: warning: " << w << "\n";
 
@@ -94,6 +106,7 @@ int run(const Options& o) {
   j["planes"] = sections->planes.size();
   j["zones"] = {{"total", rr.zones}, {"empty", rr.empty_zones}, {"end", rr.end_zones}, {"body", rr.body_zones}};
   j["primitives"] = rr.primitives;
+  j["topology_edits"] = edits.size();
   j["timings_ms"] = {{"validate", rr.timings.validate_ms}, {"partition", rr.timings.partition_ms},
                      {"primitives", rr.timings.primitives_ms}, {"union", rr.timings.union_ms},
                      {"improve", rr.timings.improve_ms}, {"reconstruct_total", rr.timings.total_ms},
@@ -115,6 +128,8 @@ void setup(CLI::App& root) {
   cmd->add_option("input", opts->input, "Cross sections file (.json, .csl, .contour)")->required();
   cmd->add_option("-o,--output", opts->output, "Output mesh (.obj, .off, .ply, .stl)")->required();
   cmd->add_option("--report", opts->report, "Write the JSON report here instead of standard output");
+  cmd->add_option("--edits", opts->edits,
+                  "Topology edits to apply (JSON: {\"edits\": [{\"kind\": \"join\"|\"split\", \"stroke\": [[x,y,z],...]}]})");
   cmd->add_flag("--no-improve", opts->no_improve, "Skip refinement and smoothing");
   cmd->add_option("--threads", opts->threads, "Worker threads (0: all)");
   cmd->add_flag("-q,--quiet", opts->quiet, "No progress lines");

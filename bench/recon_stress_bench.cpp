@@ -24,13 +24,13 @@
 //   hang       the child exceeded the time limit (default 10 s wall) and was killed.
 //
 // Usage: recon_stress_bench [--cases N] [--first-seed S] [--timeout SEC] [--oblique-every K]
-//                           [--no-improve] [--max-planes P] [--points LO HI]
+//                           [--no-improve] [--oblique-only] [--max-planes P] [--points LO HI]
 //                           [--binary PATH] [--work DIR] [--keep-failures]
 // Case c has 2 + c % (P - 1) orthogonal planes (default P = 6) and curves of LO..HI points
 // (default 40..200, the generator's default).
 // With --oblique-every K > 0, every K-th clean case adds 1-3 oblique planes (default 0: the
-// orthogonal path only). Prints a Markdown summary; exit status 1 when a case crashed, hung or
-// broke a guarantee.
+// orthogonal path only); --oblique-only skips every other case. Prints a Markdown summary;
+// exit status 1 when a case crashed, hung or broke a guarantee.
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -67,6 +67,7 @@ struct Args {
   std::uint64_t first_seed = 1;
   double timeout_s = 10.0;
   int oblique_every = 0;
+  bool oblique_only = false;
   bool improve = true;
   int max_planes = 6;
   int min_points = 40, max_points = 200;
@@ -286,6 +287,7 @@ int main(int argc, char** argv) {
     else if (k == "--timeout") a.timeout_s = std::stod(next());
     else if (k == "--oblique-every") a.oblique_every = std::stoi(next());
     else if (k == "--no-improve") a.improve = false;
+    else if (k == "--oblique-only") a.oblique_only = true;
     else if (k == "--max-planes") a.max_planes = std::max(2, std::stoi(next()));
     else if (k == "--points") {
       a.min_points = std::max(8, std::stoi(next()));
@@ -318,6 +320,7 @@ int main(int argc, char** argv) {
     g.max_curve_points = a.max_points;
     const bool oblique = family == 0 && a.oblique_every > 0 && (c / 4) % a.oblique_every == a.oblique_every - 1;
     g.oblique_planes = oblique ? 1 + static_cast<int>(seed % 3) : 0;
+    if (a.oblique_only && !oblique) continue;
     if (oblique) ++oblique_cases;
     const auto gen = ps::generate_sections(g);
     ps::SectionSet sections = gen.sections;

@@ -233,6 +233,7 @@ std::vector<ZonePrimitives> build_cylinders(const Partition& part, const Cylinde
           // === Body zone: Eq. 4.1 with the 4.3 perturbation.
           const double h = z.extent(k) * (1.0 - opt.height_margin);
           out[zi].solids.push_back(checked_prism(pc, piece, z, k, c0, c0 + dir * h, opt));
+          out[zi].info.push_back({pid, f, true, static_cast<int>(pc.points.size())});
           continue;
         }
         // === End zone: stretch across empty zones (4.4), one segment per zone.
@@ -246,10 +247,12 @@ std::vector<ZonePrimitives> build_cylinders(const Partition& part, const Cylinde
           if (last) {
             const double h = zz.extent(k) * (1.0 - opt.height_margin);
             out[id].solids.push_back(checked_prism(pc, piece, zz, k, bottom, bottom + dir * h, opt));
+            out[id].info.push_back({pid, f, false, static_cast<int>(pc.points.size())});
             break;
           }
           const double top = f % 2 == 0 ? zz.max[k] : zz.min[k];
           out[id].solids.push_back(prism(pc, k, bottom, top, pc.points));
+          out[id].info.push_back({pid, f, false, static_cast<int>(pc.points.size())});
           bottom = top;
           cell[uz(k)] += f % 2 == 0 ? 1 : -1;
         }

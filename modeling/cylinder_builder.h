@@ -32,8 +32,20 @@ struct CylinderOptions {
   double perturb = 0.02;        // pull of top points off neighbour faces (fraction of zone size)
 };
 
+// Where a primitive comes from. Every primitive is a prism whose first `bottom_count` vertices
+// are its bottom (on zone face `face`, 0..5 = -x,+x,-y,+y,-z,+z) and the next `bottom_count`
+// its top, vertex for vertex. Body-zone prisms of Eq. 4.1 are the ones topology edits change
+// (topology_edit.h); extension segments (4.4) are not.
+struct PrimitiveInfo {
+  int piece = -1;
+  int face = 0;
+  bool body = false;  // a body zone's own prism (Eq. 4.1), not an extension segment
+  int bottom_count = 0;
+};
+
 struct ZonePrimitives {
   std::vector<TriMesh> solids;  // in a fixed order (zone's own faces, then incoming extensions)
+  std::vector<PrimitiveInfo> info;  // parallel to solids
 };
 
 // Cap triangulation of a piece: indices into the concatenation of piece.loops, counter-clockwise

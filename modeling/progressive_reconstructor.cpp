@@ -340,6 +340,7 @@ void ProgressiveReconstructor::clear() {
   box_ = Box3{};
   box_fixed_ = false;
   cache_.clear();
+  edits_.clear();
 }
 
 Result<TriMesh> ProgressiveReconstructor::add(const Plane& plane, const std::vector<Vec3>& curve,
@@ -375,7 +376,9 @@ Result<TriMesh> ProgressiveReconstructor::remove(int curve, ReconstructReport* r
 // === Chapter 4: axis planes, cuboid zones of the grid, per-zone unions cached by primitives.
 // `next_cache` receives every zone's entry (the caller commits it with the rest of the state).
 Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSections& scaled, const Box3& box,
-                                                           double tol, ReconstructReport& rep,
+                                                           double tol, int scale_exponent,
+                                                           const std::vector<TopologyEdit>& edits,
+                                                           std::size_t strict_from, ReconstructReport& rep,
                                                            const std::function<void(const char*, double)>& progress,
                                                            std::multimap<std::uint64_t, CacheEntry>& next_cache) const {
   const double diag = box.diagonal();
@@ -388,7 +391,19 @@ Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSectio
 
   // === Primitives
   t = Clock::now();
-  const std::vector<ZonePrimitives> prims = build_cylinders(*part);
+  std::vector<ZonePrimitives> prims = build_cylinders(*part);
+  // === Topology edits (6.4), in the scaled coordinates; they change a few zones' primitives,
+  // so only those zones miss the cache below.
+  for (std::size_t i = 0; i < edits.size(); ++i) {
+    TopologyEdit e = edits[i];
+    for (auto& p : e.stroke)
+      for (int c = 0; c < 3; ++c) p[c] = std::ldexp(p[c], scale_exponent);
+    if (Status st = apply_topology_edit(*part, prims, e); !st) {
+      if (i >= strict_from) return st;
+      rep.warnings.push_back("topology edit " + std::to_string(i) + " (" + topology_edit_name(e.kind) +
+                             ") no longer applies and was skipped: " + st.message());
+    }
+  }
   for (const auto& z : prims) rep.primitives += static_cast<int>(z.solids.size());
   rep.timings.primitives_ms = ms_since(t);
   progress("primitives", 1.0);
@@ -457,6 +472,34 @@ Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSectio
 }
 
 Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, ReconstructReport* report) {
+  return update_with(input, edits_, edits_.size(), report);
+}
+
+Result<TriMesh> ProgressiveReconstructor::join(const std::vector<Vec3>& stroke, ReconstructReport* report) {
+  std::vector<TopologyEdit> edits = edits_;
+  edits.push_back({TopologyEditKind::kJoin, stroke});
+  return update_with(sections_, edits, edits.size() - 1, report);
+}
+
+Result<TriMesh> ProgressiveReconstructor::split(const std::vector<Vec3>& stroke, ReconstructReport* report) {
+  std::vector<TopologyEdit> edits = edits_;
+  edits.push_back({TopologyEditKind::kSplit, stroke});
+  return update_with(sections_, edits, edits.size() - 1, report);
+}
+
+Result<TriMesh> ProgressiveReconstructor::undo_edit(ReconstructReport* report) {
+  if (edits_.empty()) return Result<TriMesh>::error("there is no topology edit to undo");
+  std::vector<TopologyEdit> edits(edits_.begin(), edits_.end() - 1);
+  return update_with(sections_, edits, edits.size(), report);
+}
+
+Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& sections, const std::vector<TopologyEdit>& edits,
+                                                 ReconstructReport* report) {
+  return update_with(sections, edits, 0, report);
+}
+
+Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, const std::vector<TopologyEdit>& edits,
+                                                      std::size_t strict_from, ReconstructReport* report) {
   const auto t_total = Clock::now();
   ReconstructReport rep;
   auto progress = [&](const char* stage, double f) {
@@ -515,13 +558,18 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
   const double tol = 1e-10 * diag;
   std::multimap<std::uint64_t, CacheEntry> cache;
   TriMesh mesh;
+  if (!orthogonal && strict_from < edits.size())
+    return Result<TriMesh>::error(std::string(topology_edit_name(edits[strict_from].kind)) +
+                                  ": topology edits apply to sections on axis planes only");
+  if (!orthogonal && !edits.empty())
+    rep.warnings.push_back("topology edits were skipped: they apply to sections on axis planes only");
   if (!orthogonal) {
     auto built = reconstruct_polyhedral(scaled, box, rep, progress, options_.threads);
     t = Clock::now();
     if (!built) return built.status();
     mesh = std::move(*built);
   } else {
-    auto built = reconstruct_grid(scaled, box, tol, rep, progress, cache);
+    auto built = reconstruct_grid(scaled, box, tol, k, edits, strict_from, rep, progress, cache);
     t = Clock::now();
     if (!built) return built.status();
     mesh = std::move(*built);
@@ -574,6 +622,7 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& input, Recons
   box_ = user_box;
   box_fixed_ = true;
   sections_ = input;
+  edits_ = edits;
   mesh_ = mesh;
   rep.timings.total_ms = ms_since(t_total);
   if (report) *report = std::move(rep);

@@ -20,6 +20,7 @@
 #include "modeling/mesh.h"
 #include "modeling/reconstruct.h"
 #include "modeling/status.h"
+#include "modeling/topology_edit.h"
 
 namespace ps {
 
@@ -38,6 +39,19 @@ class ProgressiveReconstructor {
   Result<TriMesh> replace(int curve, const std::vector<Vec3>& points, ReconstructReport* report = nullptr);
   Result<TriMesh> remove(int curve, ReconstructReport* report = nullptr);
 
+  // Topology editing (thesis 6.4, topology_edit.h), on sections of axis planes: the edit is kept
+  // and applied again on every later update (a kept edit that no longer applies, because the
+  // sections changed under it, is skipped with a warning). On error nothing changes.
+  Result<TriMesh> join(const std::vector<Vec3>& stroke, ReconstructReport* report = nullptr);
+  Result<TriMesh> split(const std::vector<Vec3>& stroke, ReconstructReport* report = nullptr);
+  // Removes the last edit and reconstructs.
+  Result<TriMesh> undo_edit(ReconstructReport* report = nullptr);
+  const std::vector<TopologyEdit>& edits() const { return edits_; }
+  // Reconstructs `sections` with exactly these edits (e.g. a loaded session, the command line);
+  // every edit must apply.
+  Result<TriMesh> update(const SectionSet& sections, const std::vector<TopologyEdit>& edits,
+                         ReconstructReport* report = nullptr);
+
   const SectionSet& sections() const { return sections_; }
   const TriMesh& mesh() const { return mesh_; }
   const Box3& box() const { return box_; }
@@ -50,8 +64,12 @@ class ProgressiveReconstructor {
     std::vector<TriMesh> primitives;
     TriMesh solid;
   };
-  Result<TriMesh> reconstruct_grid(const ValidatedSections& scaled, const Box3& box, double tol, ReconstructReport& rep,
-                                   const std::function<void(const char*, double)>& progress,
+  // Edits from index `strict_from` on must apply; earlier ones are skipped with a warning.
+  Result<TriMesh> update_with(const SectionSet& sections, const std::vector<TopologyEdit>& edits,
+                              std::size_t strict_from, ReconstructReport* report);
+  Result<TriMesh> reconstruct_grid(const ValidatedSections& scaled, const Box3& box, double tol, int scale_exponent,
+                                   const std::vector<TopologyEdit>& edits, std::size_t strict_from,
+                                   ReconstructReport& rep, const std::function<void(const char*, double)>& progress,
                                    std::multimap<std::uint64_t, CacheEntry>& next_cache) const;
   ReconstructOptions options_;
   SectionSet sections_;
@@ -59,6 +77,7 @@ class ProgressiveReconstructor {
   Box3 box_;
   bool box_fixed_ = false;
   std::multimap<std::uint64_t, CacheEntry> cache_;
+  std::vector<TopologyEdit> edits_;
 };
 
 }  // namespace ps

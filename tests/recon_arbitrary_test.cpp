@@ -26,11 +26,7 @@ using namespace ps::testing;
 
 namespace {
 
-ReconstructOptions no_improve() {
-  ReconstructOptions o;
-  o.improve = false;
-  return o;
-}
+using ps::testing::no_improve;
 
 // A circle of radius r about c on the plane through c with normal n.
 std::vector<Vec3> circle_on(const Vec3& c, const Vec3& n, double r, int count) {

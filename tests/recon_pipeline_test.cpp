@@ -16,11 +16,7 @@ using testing::add_circle;
 using testing::ellipsoid_slices;
 using testing::torus_slices;
 
-ReconstructOptions no_improve() {
-  ReconstructOptions o;
-  o.improve = false;
-  return o;
-}
+using ps::testing::no_improve;
 
 MeshGuarantees expect_valid(const SectionSet& s, const TriMesh& m) {
   const MeshGuarantees g = check_guarantees(m);

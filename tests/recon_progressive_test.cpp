@@ -16,11 +16,7 @@
 namespace ps {
 namespace {
 
-ReconstructOptions no_improve() {
-  ReconstructOptions o;
-  o.improve = false;
-  return o;
-}
+using ps::testing::no_improve;
 
 SectionSet five_sections() {
   return testing::ellipsoid_slices(Vec3::Zero(), Vec3(1.0, 0.8, 0.6),

@@ -8,8 +8,16 @@
 
 #include "modeling/cross_section.h"
 #include "modeling/mesh.h"
+#include "modeling/reconstruct.h"
 
 namespace ps::testing {
+
+// Reconstruction without the improvement (4.5.1): the initial mesh only, fast.
+inline ReconstructOptions no_improve() {
+  ReconstructOptions o;
+  o.improve = false;
+  return o;
+}
 
 // An ellipse on the axis plane x_k = offset, centre (cu, cv) in the plane's (u, v) coordinates
 // (u = axis k+1, v = axis k+2), radii (ru, rv), n uniform samples plus `exact` points (3D points

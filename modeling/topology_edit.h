@@ -1,0 +1,56 @@
+#pragma once
+// Topology editing by sketch (thesis 6.4) on the primitives of the orthogonal reconstruction.
+//
+// The reconstruction keeps its zones and primitives (progressive_reconstructor.h); an edit
+// changes a few body-zone prisms (Eq. 4.1), so only the unions of the zones it touches are
+// recomputed (the per-zone cache keys on the primitives).
+//
+//   Join  (a stroke from one surface part to another): the prisms nearest the stroke's first and
+//         last points are found. In one zone, the first prism's top is translated towards the
+//         second prism (a shear of the whole prism, so it stays valid) in steps of 5% of the
+//         centroid offset until the two solids overlap, plus two steps of margin. The top stays
+//         inside the zone by 0.5% of its extent.
+//   Split (a stroke across a local part): the body zone holding the stroke's middle point, and
+//         in it the group of prisms connected by overlap that contains the prism nearest that
+//         point. Every prism of the group is shrunk towards its bottom (heights times 0.8, 0.64,
+//         ... down to 0.1) until no two of them overlap. A prism whose wall lies in a side face
+//         carrying no section continues in the neighbour zone; that continuation is shrunk by
+//         the same factor, so the zone faces still match.
+//
+// Edits are geometric (the stroke, in the reconstruction's coordinates), not indices, so they
+// are resolved again on every update and survive sections added elsewhere. What is refused, with
+// the reason: a join whose parts lie in different zones (the zone chain of 6.4 is not built), a
+// join or split that would move a prism reaching a side face or continuing into an end zone,
+// a stroke over no body zone, a part of a single prism.
+#include <string>
+#include <vector>
+
+#include "modeling/cylinder_builder.h"
+#include "modeling/mesh.h"
+#include "modeling/status.h"
+#include "modeling/zone_partition.h"
+
+namespace ps {
+
+enum class TopologyEditKind { kJoin, kSplit };
+
+struct TopologyEdit {
+  TopologyEditKind kind = TopologyEditKind::kJoin;
+  std::vector<Vec3> stroke;  // join: first and last points select the parts; split: across the part
+};
+
+// Applies one edit to `prims` (as built by build_cylinders on `part`, with their info). On error
+// `prims` is unchanged. `touched` (optional) receives the zones whose primitives changed.
+Status apply_topology_edit(const Partition& part, std::vector<ZonePrimitives>& prims, const TopologyEdit& edit,
+                           std::vector<int>* touched = nullptr);
+
+// "join" / "split".
+const char* topology_edit_name(TopologyEditKind kind);
+
+// The edits file (docs/reconstruction.md, "Topology editing"):
+//   {"edits": [{"kind": "join" | "split", "stroke": [[x, y, z], ...]}, ...]}
+// Errors name the edit index and the field.
+Result<std::vector<TopologyEdit>> parse_topology_edits(const std::string& text);
+std::string format_topology_edits(const std::vector<TopologyEdit>& edits);
+
+}  // namespace ps
