@@ -98,6 +98,7 @@ Result<ExtrudePlane> make_plane(const MeshRayCaster& caster, const TriMesh& mode
                                 const Camera& cam, const ExtrudeOptions& o) {
   if (Status s = check_window_points(stroke_in, 3, "the base stroke"); !s) return s;
   if (o.section_points < 8) return Result<ExtrudePlane>::error("extrusion needs at least 8 section points");
+  if (Status s = check_plane_rotation(o.spin, o.tilt); !s) return s;
   const std::vector<Vec2> stroke = dedup(stroke_in, /*closed=*/true);
   if (stroke.size() < 3) return Result<ExtrudePlane>::error("the base stroke has fewer than 3 distinct points");
   Vec2 lo = stroke[0], hi = stroke[0];
@@ -213,6 +214,14 @@ bool smoothing_self_intersects(const TriMesh& m, const std::vector<std::uint8_t>
 }
 
 }  // namespace
+
+Status check_plane_rotation(double spin, double tilt) {
+  if (!std::isfinite(spin)) return Status::error("the reference plane's spin is not a finite angle");
+  if (!(std::abs(tilt) < 0.5 * M_PI))
+    return Status::error("the reference plane's tilt must lie strictly between -90 and 90 degrees (found " +
+                         fmt(tilt * 180.0 / M_PI) + " degrees): the part must leave the surface");
+  return Status::ok();
+}
 
 Result<ExtrudePlane> extrusion_reference_plane(const TriMesh& model, const std::vector<Vec2>& base_stroke_px,
                                                const Camera& camera, const ExtrudeOptions& options) {

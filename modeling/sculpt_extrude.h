@@ -36,6 +36,11 @@ struct ExtrudeOptions {
   double end_tolerance = 0.35;
 };
 
+// Whether spin and tilt (ExtrudeOptions) turn the reference plane acceptably: spin any finite
+// angle; tilt strictly between -pi/2 and pi/2 (at +-pi/2 the normal axis would lie in the
+// surface). Else the reason.
+Status check_plane_rotation(double spin, double tilt);
+
 // The automatic reference plane (what the app shows while the user draws the silhouette).
 struct ExtrudePlane {
   Plane plane;                      // the reference plane (contains centre, normal_axis, across)

@@ -147,6 +147,22 @@ TEST(ExtrudePlane, SpinAndTiltTurnThePlaneAboutTheTwoAxes) {
   EXPECT_NEAR(p2->plane.signed_distance(p2->centre), 0.0, 1e-12);
 }
 
+TEST(ExtrudePlane, RefusesATiltOfNinetyDegreesOrAnInfiniteSpin) {
+  const auto stroke = circle_px(Vec2(320, 240), 50);
+  ExtrudeOptions o;
+  o.tilt = M_PI / 2;
+  auto p = extrusion_reference_plane(sphere(), stroke, front_camera(), o);
+  ASSERT_FALSE(p);
+  EXPECT_NE(p.message().find("tilt must lie strictly between -90 and 90 degrees (found 90 degrees)"), std::string::npos)
+      << p.message();
+  o.tilt = -1.5;
+  EXPECT_TRUE(extrusion_reference_plane(sphere(), stroke, front_camera(), o));
+  o.spin = INFINITY;
+  p = extrusion_reference_plane(sphere(), stroke, front_camera(), o);
+  ASSERT_FALSE(p);
+  EXPECT_NE(p.message().find("spin is not a finite angle"), std::string::npos) << p.message();
+}
+
 // === Extrusion
 TEST(Extrude, BumpOnASphereIsAValidSolidWithTheMaterialOutsideNearTheStroke) {
   Strokes s = sphere_bump();
