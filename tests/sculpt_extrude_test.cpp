@@ -18,15 +18,7 @@
 namespace ps {
 namespace {
 
-Camera front_camera() {
-  Camera c;
-  c.eye = Vec3(0, 0, 4);
-  c.target = Vec3::Zero();
-  c.up = Vec3(0, 1, 0);
-  c.width = 640;
-  c.height = 480;
-  return c;
-}
+using testing::front_camera;
 
 std::vector<Vec2> circle_px(const Vec2& c, double r, int n = 48) {
   std::vector<Vec2> s;
