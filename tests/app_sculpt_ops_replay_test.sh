@@ -6,7 +6,10 @@
 #   tunnel           genus + 1, one component, no material left inside the drawn circle, volume down;
 #   extrude          genus and components unchanged, volume up by about the half ellipsoid drawn,
 #                    the new material near the stroke on the outer side, the silhouette's tip on it;
-#   extrude-rotated  the same on the plane turned by extrude_spin / extrude_tilt: the tip where the
+#   dig-tunnel       a U-shaped silhouette drawn into the model and out at its back, bent towards
+#                    +y: genus + 1, hollow along the bent skeleton, solid on the straight line from
+#                    the base where the skeleton has moved aside;
+#   extrude-rotated  the same as extrude on the plane turned by extrude_spin / extrude_tilt: the tip where the
 #                    turned plane puts it (far from the unturned tip), kept by a saved session;
 #   miss             a refused extrude_tilt beyond 90 degrees and four refused strokes (off the
 #                    model in sculpt, tunnel and extrude modes, a degenerate silhouette), each with
@@ -32,6 +35,7 @@ run() {  # NAME STEP...: generate, replay (model, report, expectations)
 run tunnel tunnel
 run extrude extrude
 run rotated extrude-rotated
+run dig dig-tunnel
 run miss miss
 run tunnel_undo tunnel undo
 run tunnel_redo tunnel undo redo
@@ -54,7 +58,16 @@ python3 - "$tmp" "$src/scripts" <<'PY'
 import json, math, sys
 d = sys.argv[1]
 sys.path.insert(0, sys.argv[2])
-from sculptlog import cam, dot, norm, project, read_obj, signed_volume, sub
+from sculptlog import add, cam, cross, dot, norm, project, read_obj, scale, signed_volume, sub
+
+def winding(vs, fs, p):
+    """Generalised winding number: about 1 inside a closed mesh, 0 outside."""
+    total = 0.0
+    for f in fs:
+        a, b, c = (sub(vs[k], p) for k in f)
+        la, lb, lc = norm(a), norm(b), norm(c)
+        total += 2 * math.atan2(dot(a, cross(b, c)), la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb)
+    return total / (4 * math.pi)
 
 def load(name):
     r = json.load(open(f"{d}/{name}.json"))
@@ -65,7 +78,7 @@ sv, sf = read_obj(f"{d}/sketch.obj")
 v0 = signed_volume(sv, sf)
 sketch = set(map(tuple, sv))
 report = []
-for name in ("tunnel", "extrude", "rotated", "tunnel_undo", "tunnel_redo", "extrude_undo"):
+for name in ("tunnel", "extrude", "rotated", "dig", "tunnel_undo", "tunnel_redo", "extrude_undo"):
     r = load(name)[0]
     assert r["valid"], f"{name}: not closed/manifold/outward/self-intersection free: {r}"
     assert r["refused"] == [], f"{name}: refused {r['refused']}"
@@ -108,6 +121,23 @@ moved = norm(sub(tips["rotated"], tips["extrude"]))
 assert moved > 0.25 and tips["rotated"][2] < tips["extrude"][2] - 0.05, (tips, moved)
 s = json.load(open(f"{d}/rotated.session.json"))
 assert [(o["kind"], o["spin"], o["tilt"]) for o in s["ops"]] == [("extrude", 0.6, 0.5)], s["ops"]
+
+# Bent tunnel: genus 0 -> 1; the points of the bent skeleton (u = mid + 0.8 f^2 at the fraction f
+# of the 2.5 depth) inside the sketch are hollow in the result; the straight line from the base
+# centre at f = 0.6 (0.29 from the skeleton; the tunnel's radius is about 0.23) is still solid.
+r, vs, fs, e = load("dig")
+e = e["dig-tunnel"]
+assert r["genus"] == 1, r["genus"]
+c, n, a = e["centre"], e["normal_axis"], e["across"]
+for f in (0.2, 0.4, 0.6):
+    bent = add(c, add(scale(e["mid"] + 0.8 * f * f, a), scale(-2.5 * f, n)))
+    assert winding(sv, sf, bent) > 0.95, (f, bent)
+    assert winding(vs, fs, bent) < 0.05, f"material left on the bent tunnel's skeleton at {f}: {bent}"
+straight = add(c, add(scale(e["mid"], a), scale(-1.5, n)))
+assert winding(vs, fs, straight) > 0.95, f"the tunnel is straight: {straight} is hollow"
+dv = signed_volume(vs, fs) - v0
+assert dv < -0.2, dv
+report.append(f"bent tunnel: genus 1, volume {dv:+.3f}")
 
 # Refusals: each named, the model untouched (compared bit for bit above).
 r = load("miss")[0]
