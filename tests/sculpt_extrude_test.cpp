@@ -356,17 +356,22 @@ std::vector<Vec2> u_px(const ExtrudePlane& p, const Camera& cam, double depth, d
   return px;
 }
 
+// A dig into the sphere: valid, one component, the genus (and the report's change) as given.
+void expect_dug(const TriMesh& out, const ExtrudeReport& rep, int genus) {
+  expect_valid(out);
+  const MeshTopology t = mesh_topology(out);
+  EXPECT_EQ(t.components, 1);
+  EXPECT_EQ(t.genus, genus);
+  EXPECT_TRUE(rep.dug);
+  EXPECT_EQ(rep.genus_change, genus);
+}
+
 TEST(Dig, SilhouetteIntoTheModelDigsAPocket) {
   Strokes s = sphere_bump(Vec2(350, 220), 50, -0.5);
   ExtrudeReport rep;
   auto out = extrude_by_strokes(sphere(), s.base, s.silhouette, s.cam, s.options, &rep);
   ASSERT_TRUE(out) << out.message();
-  expect_valid(*out);
-  const MeshTopology t = mesh_topology(*out);
-  EXPECT_EQ(t.components, 1);
-  EXPECT_EQ(t.genus, 0);
-  EXPECT_TRUE(rep.dug);
-  EXPECT_EQ(rep.genus_change, 0);
+  expect_dug(*out, rep, 0);
   double half = 0, mid = 0;
   base_extent(s.plane, half, mid);
   const double half_ellipsoid = 2.0 / 3.0 * M_PI * std::pow(0.95 * half, 2) * 0.5;
@@ -390,12 +395,7 @@ TEST(Dig, SilhouetteOutAtTheBackDigsABentTunnel) {
   ExtrudeReport rep;
   auto out = extrude_by_strokes(sphere(), base, u_px(*plane, *o.silhouette_camera, depth, lean), cam, o, &rep);
   ASSERT_TRUE(out) << out.message();
-  expect_valid(*out);
-  const MeshTopology t = mesh_topology(*out);
-  EXPECT_EQ(t.components, 1);
-  EXPECT_EQ(t.genus, 1);
-  EXPECT_TRUE(rep.dug);
-  EXPECT_EQ(rep.genus_change, 1);
+  expect_dug(*out, rep, 1);
   EXPECT_LT(rep.added_volume, -0.2);
   std::printf("bent tunnel: removed %.4f, %zu faces, join %d vertices, %d smoothing steps, %d attempt(s)\n",
               -rep.added_volume, out->faces.size(), rep.join_vertices, rep.smooth_steps, rep.boolean_attempts);
