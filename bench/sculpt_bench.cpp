@@ -76,6 +76,8 @@ int main(int argc, char** argv) {
     for (int i = 0; i < 48; ++i) s.push_back(Vec2(350, 220) + 50.0 * Vec2(std::cos(2 * M_PI * i / 48), std::sin(2 * M_PI * i / 48)));
     return s;
   }();
+  // The session builds the plane when the base stroke is drawn (and the window when it shows it).
+  run("extrusion plane (base)", reps, [&] { return extrusion_reference_plane(model, base, cam).status(); });
   // The silhouette is drawn under a camera facing the reference plane: uv(t, width), t in
   // [0, 1], in plane coordinates (u along `across` from the middle of the base, whose width
   // there is `width`; v along the normal axis), sampled at n + 1 points.
