@@ -544,7 +544,8 @@ class WindowApp {
     ro.height = cam.height;
     auto r = ps::engine::create_offscreen_renderer(ro);
     if (!r) throw ps::app::CommandFailed("screenshot: " + r.message());
-    auto img = (*r)->render(ps::app::session_scene(worker_->latest()->state, worker_->input(), cam));
+    const auto snap = worker_->latest();
+    auto img = (*r)->render(ps::app::session_scene(snap->state, worker_->input(), cam, {}, snap->extrusion_plane));
     if (!img) throw ps::app::CommandFailed("screenshot: " + img.message());
     if (auto st = ps::engine::write_png(o_.screenshot, *img); !st) throw ps::app::CommandFailed(st.message());
   }
