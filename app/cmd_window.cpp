@@ -516,6 +516,13 @@ class WindowApp {
     const auto& st = shown_->state;
     ImGui::Text("%zu sections, %zu faces%s", st.sections.curves.size(), st.model.faces.size(),
                 worker_->caught_up() ? "" : ", rebuilding");
+    // The last refusal (every one is also on stderr): a stroke that left the model unchanged
+    // says why here, e.g. a sculpting stroke that misses the model.
+    if (!shown_->messages.empty()) {
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);
+      ImGui::TextColored(ImVec4(0.85f, 0.30f, 0.20f, 1.0f), "last refusal: %s", shown_->messages.back().text.c_str());
+      ImGui::PopTextWrapPos();
+    }
     ImGui::End();
   }
 
