@@ -442,7 +442,7 @@ class WindowApp {
       cam.width = fb.first;
       cam.height = fb.second;
       const auto t_present = Clock::now();
-      if (auto st = win_->present(ps::app::session_scene(snap->state, worker_->input(), cam, live_)); !st)
+      if (auto st = win_->present(ps::app::session_scene(snap->state, worker_->input(), cam, live_, snap->extrusion_plane)); !st)
         std::cerr << "planesketch: " << st.message() << "\n";
       const auto t_done = Clock::now();
       present_ms_.push_back(ms_between(t_present, t_done));
@@ -502,9 +502,27 @@ class WindowApp {
     ImGui::SetNextItemWidth(180.0f);
     if (auto v = panel_value("stiffness", stiffness != in.parameters.end() ? stiffness->second : 1.0, true, 0.0f, 1.0f))
       act(panel_t_, ps::SetParameter{"stiffness", *v});
+    // The extrusion's reference plane (drawn while an extrusion waits for its silhouette) turned
+    // about the region's normal (spin) and about its diameter (tilt), radians; read when the
+    // silhouette is drawn (docs/sculpting.md).
+    if (in.mode == "extrude" || in.mode == "sculpt") {
+      for (const auto& [name, limit] : {std::pair{"extrude_spin", 3.14f}, std::pair{"extrude_tilt", 1.5f}}) {
+        const auto it = in.parameters.find(name);
+        ImGui::SetNextItemWidth(180.0f);
+        if (auto v = panel_value(name, it != in.parameters.end() ? it->second : 0.0, true, -limit, limit))
+          act(panel_t_, ps::SetParameter{name, *v});
+      }
+    }
     const auto& st = shown_->state;
     ImGui::Text("%zu sections, %zu faces%s", st.sections.curves.size(), st.model.faces.size(),
                 worker_->caught_up() ? "" : ", rebuilding");
+    // The last refusal (every one is also on stderr): a stroke that left the model unchanged
+    // says why here, e.g. a sculpting stroke that misses the model.
+    if (!shown_->messages.empty()) {
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);
+      ImGui::TextColored(ImVec4(0.85f, 0.30f, 0.20f, 1.0f), "last refusal: %s", shown_->messages.back().text.c_str());
+      ImGui::PopTextWrapPos();
+    }
     ImGui::End();
   }
 
@@ -533,7 +551,8 @@ class WindowApp {
     ro.height = cam.height;
     auto r = ps::engine::create_offscreen_renderer(ro);
     if (!r) throw ps::app::CommandFailed("screenshot: " + r.message());
-    auto img = (*r)->render(ps::app::session_scene(worker_->latest()->state, worker_->input(), cam));
+    const auto snap = worker_->latest();
+    auto img = (*r)->render(ps::app::session_scene(snap->state, worker_->input(), cam, {}, snap->extrusion_plane));
     if (!img) throw ps::app::CommandFailed("screenshot: " + img.message());
     if (auto st = ps::engine::write_png(o_.screenshot, *img); !st) throw ps::app::CommandFailed(st.message());
   }

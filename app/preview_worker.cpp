@@ -6,8 +6,10 @@ namespace ps::app {
 
 namespace {
 
-// Actions the session applies to the model; everything else only changes the input state.
+// Actions the session applies to the model, or that change what a snapshot shows (the turned
+// reference plane of a half-drawn extrusion); everything else only changes the input state.
 bool action_changes_model(const Event& e) {
+  if (const auto* p = std::get_if<SetParameter>(&e)) return p->name == "extrude_spin" || p->name == "extrude_tilt";
   return std::holds_alternative<Undo>(e) || std::holds_alternative<Redo>(e) ||
          std::holds_alternative<DeleteSection>(e);
 }
@@ -136,6 +138,7 @@ std::shared_ptr<const PreviewSnapshot> PreviewWorker::snapshot() const {
   s->rebuild_ms = driver_.stroke_latencies_ms();
   s->can_undo = driver_.session().can_undo();
   s->can_redo = driver_.session().can_redo();
+  s->extrusion_plane = driver_.pending_extrusion_plane();
   return s;
 }
 

@@ -50,6 +50,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <variant>
 #include <vector>
@@ -68,6 +69,8 @@ struct PreviewSnapshot {
   std::size_t strokes_applied = 0;      // of them, strokes (on_stroke calls)
   std::vector<double> rebuild_ms;       // the driver's pen-up to rebuilt model times so far
   bool can_undo = false, can_redo = false;
+  // The reference plane of an extrusion waiting for its silhouette (SessionDriver).
+  std::optional<ExtrudePlane> extrusion_plane;
 };
 
 class PreviewWorker : public EventSink {

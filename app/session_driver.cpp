@@ -7,6 +7,7 @@
 
 #include "modeling/mesh_io.h"
 #include "modeling/sculpt_cut.h"
+#include "modeling/sculpt_extrude.h"
 #include "modeling/session_io.h"
 #include "modeling/stroke_classify.h"
 #include "modeling/stroke_preprocess.h"
@@ -65,6 +66,14 @@ void SessionDriver::on_action(const TimedEvent& e) {
           if (a.name == "stiffness" && !(a.value >= 0.0 && a.value <= 1.0)) {
             report(e.t, e.line, "stiffness must lie in [0, 1]; kept " + std::to_string(parameter("stiffness", 1.0)));
             return;
+          }
+          // The extrusion's reference plane rotations (radians), read when the silhouette completes it.
+          if (a.name == "extrude_spin" || a.name == "extrude_tilt") {
+            const bool spin = a.name == "extrude_spin";
+            if (auto st = check_plane_rotation(spin ? a.value : 0.0, spin ? 0.0 : a.value); !st) {
+              report(e.t, e.line, st.message() + "; kept " + std::to_string(parameter(a.name, 0.0)));
+              return;
+            }
           }
           if (auto st = input_.apply(e.event); !st) report(e.t, e.line, st.message());
         } else if constexpr (std::is_same_v<T, Save>) {
@@ -203,9 +212,10 @@ void SessionDriver::sculpt_stroke(double t, const std::vector<Vec2>& pts) {
     pending_base_.clear();
     op.silhouette = pts;
     op.silhouette_camera = input_.camera;
+    op.spin = parameter("extrude_spin", 0.0);
+    op.tilt = parameter("extrude_tilt", 0.0);
   } else if (input_.mode == "extrude") {
-    pending_base_ = pts;
-    pending_base_camera_ = input_.camera;
+    start_extrusion(t, pts);
     return;
   } else if (!pending_cut_.empty()) {
     op.kind = SculptOp::Kind::kCut;
@@ -227,8 +237,7 @@ void SessionDriver::sculpt_stroke(double t, const std::vector<Vec2>& pts) {
     }
     switch (c->cls) {
       case StrokeClass::kClosed:
-        pending_base_ = pts;
-        pending_base_camera_ = input_.camera;
+        start_extrusion(t, pts);
         return;
       case StrokeClass::kScratchOut: op.kind = SculptOp::Kind::kSmooth; break;
       case StrokeClass::kOpenCutting:
@@ -248,6 +257,32 @@ void SessionDriver::sculpt_stroke(double t, const std::vector<Vec2>& pts) {
     return;
   }
   changed();
+}
+
+// An extrusion's base stroke is checked at once (closed, on the model: the reference plane can
+// be built), so a stroke that misses the model is refused when it is drawn, not after the
+// silhouette; it then waits for the silhouette.
+void SessionDriver::start_extrusion(double t, const std::vector<Vec2>& pts) {
+  if (auto plane = pending_plane_for(pts, input_.camera); !plane) {
+    report(t, 0, "stroke refused: extrude: " + plane.message());
+    return;
+  }
+  pending_base_ = pts;
+  pending_base_camera_ = input_.camera;
+}
+
+Result<ExtrudePlane> SessionDriver::pending_plane_for(const std::vector<Vec2>& base, const Camera& camera) const {
+  ExtrudeOptions o;
+  o.spin = parameter("extrude_spin", 0.0);
+  o.tilt = parameter("extrude_tilt", 0.0);
+  return extrusion_reference_plane(session_.state().model, base, camera, o);
+}
+
+std::optional<ExtrudePlane> SessionDriver::pending_extrusion_plane() const {
+  if (pending_base_.empty()) return std::nullopt;
+  auto plane = pending_plane_for(pending_base_, pending_base_camera_);
+  if (!plane) return std::nullopt;
+  return std::move(*plane);
 }
 
 // === Deformation (thesis 3.2.2, 3.3.3, chapter 5). Two strokes: the handle over the model, then

@@ -8,6 +8,7 @@
 
 #include "input/input_state.h"
 #include "input/stroke_replayer.h"
+#include "modeling/sculpt_extrude.h"
 #include "modeling/sketch_session.h"
 
 namespace ps::app {
@@ -36,6 +37,10 @@ class SessionDriver : public EventSink {
   const std::vector<DriverMessage>& messages() const { return messages_; }
   // Wall time from pen-up to the rebuilt model, per accepted sketch stroke (ms).
   const std::vector<double>& stroke_latencies_ms() const { return latencies_; }
+  // The automatic reference plane of an extrusion whose base stroke waits for its silhouette,
+  // turned by the current extrude_spin / extrude_tilt parameters (what the window shows); none
+  // when no extrusion is half-drawn.
+  std::optional<ExtrudePlane> pending_extrusion_plane() const;
   // Called after every change of the model (accepted stroke, delete, undo, redo).
   std::function<void(const SketchSession&)> on_model_changed;
   // Called for a save action with its path (the live app saves; replay leaves it unset).
@@ -52,6 +57,8 @@ class SessionDriver : public EventSink {
  private:
   void report(double t, int line, const std::string& text);
   void sculpt_stroke(double t, const std::vector<Vec2>& pts);
+  void start_extrusion(double t, const std::vector<Vec2>& pts);
+  Result<ExtrudePlane> pending_plane_for(const std::vector<Vec2>& base, const Camera& camera) const;
   void deform_stroke(double t, const std::vector<Vec2>& pts);
   void stiffness_stroke(double t, const std::vector<Vec2>& pts);
   // A lasso (closed stroke) or brush (open stroke) selection from a stroke under the current camera.

@@ -36,11 +36,12 @@ Camera framed_camera(const SessionState& state, const Camera& initial_camera, in
 
 engine::Scene session_scene(const SessionDriver& d, const Camera& camera,
                             const std::vector<Vec3>& stroke_in_progress) {
-  return session_scene(d.session().state(), d.input(), camera, stroke_in_progress);
+  return session_scene(d.session().state(), d.input(), camera, stroke_in_progress, d.pending_extrusion_plane());
 }
 
 engine::Scene session_scene(const SessionState& st, const InputState& input, const Camera& camera,
-                            const std::vector<Vec3>& stroke_in_progress) {
+                            const std::vector<Vec3>& stroke_in_progress,
+                            const std::optional<ExtrudePlane>& extrusion_plane) {
   using namespace ps::engine;
   Scene scene;
   scene.camera = camera;
@@ -67,6 +68,24 @@ engine::Scene session_scene(const SessionState& st, const InputState& input, con
     sv.color = Rgba{0.95f, 0.70f, 0.10f, 1.0f};
     sv.width_px = 3.0f;
     scene.strokes.push_back(std::move(sv));
+  }
+  if (extrusion_plane) {
+    // Sized to the base curve: the silhouette is drawn over a few base widths of it.
+    double reach = 0.0;
+    for (const auto& q : extrusion_plane->base_curve) reach = std::max(reach, (q - extrusion_plane->centre).norm());
+    PlaneVisual pv;
+    pv.plane = extrusion_plane->plane;
+    pv.center = extrusion_plane->centre;
+    pv.half_size = std::max(3.0 * reach, 1e-3);
+    pv.color = Rgba{0.95f, 0.55f, 0.10f, 0.22f};
+    pv.selected = true;
+    scene.planes.push_back(pv);
+    StrokeVisual base;
+    base.points = extrusion_plane->base_curve;
+    base.closed = true;
+    base.color = Rgba{0.95f, 0.45f, 0.05f, 1.0f};
+    base.width_px = 3.0f;
+    scene.strokes.push_back(std::move(base));
   }
   if (stroke_in_progress.size() >= 2) {
     StrokeVisual sv;

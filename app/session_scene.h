@@ -1,7 +1,8 @@
 #pragma once
 // What the window and the replay picture show of a session: the reference planes (selected one
 // highlighted), the sewn cross sections, the model as an opaque lit mesh, and optionally a
-// stroke in progress.
+// stroke in progress and the reference plane of a half-drawn extrusion.
+#include <optional>
 #include <vector>
 
 #include "app/session_driver.h"
@@ -12,9 +13,12 @@ namespace ps::app {
 // The scene for session state `state` with the planes and selection of `input`, seen through
 // `camera` (its width/height give the image size). The window draws published snapshots of a
 // session running on another thread (app/preview_worker.h), hence values, not the driver.
+// `extrusion_plane` (SessionDriver::pending_extrusion_plane) is drawn highlighted, with its base
+// curve, while an extrusion waits for its silhouette.
 engine::Scene session_scene(const SessionState& state, const InputState& input, const Camera& camera,
-                            const std::vector<Vec3>& stroke_in_progress = {});
-// The same for the session a driver holds.
+                            const std::vector<Vec3>& stroke_in_progress = {},
+                            const std::optional<ExtrudePlane>& extrusion_plane = std::nullopt);
+// The same for the session a driver holds (its pending extrusion plane included).
 engine::Scene session_scene(const SessionDriver& d, const Camera& camera,
                             const std::vector<Vec3>& stroke_in_progress = {});
 

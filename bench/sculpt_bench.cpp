@@ -1,4 +1,5 @@
-// Sculpting benchmark (issue 6 point 9): cutting, tunnelling, scratch-out smoothing and extrusion on a
+// Sculpting benchmark (issue 6 point 9): cutting, tunnelling, scratch-out smoothing, extrusion
+// (also on a turned plane) and digging (a pocket, a bent tunnel) on a
 // 20k-triangle closed model (a UV sphere of 19 800 triangles), through the same functions the
 // session calls. Prints the median and minimum wall time and the CPU time of each operation.
 //
@@ -10,6 +11,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "modeling/sculpt_cut.h"
@@ -74,30 +76,71 @@ int main(int argc, char** argv) {
     for (int i = 0; i < 48; ++i) s.push_back(Vec2(350, 220) + 50.0 * Vec2(std::cos(2 * M_PI * i / 48), std::sin(2 * M_PI * i / 48)));
     return s;
   }();
-  const auto plane = extrusion_reference_plane(model, base, cam);
-  if (!plane) {
-    std::printf("extrusion plane: refused: %s\n", plane.message().c_str());
-    return 1;
+  // The session builds the plane when the base stroke is drawn (and the window when it shows it).
+  run("extrusion plane (base)", reps, [&] { return extrusion_reference_plane(model, base, cam).status(); });
+  // The silhouette is drawn under a camera facing the reference plane: uv(t, width), t in
+  // [0, 1], in plane coordinates (u along `across` from the middle of the base, whose width
+  // there is `width`; v along the normal axis), sampled at n + 1 points.
+  struct Drawn {
+    ExtrudeOptions options;
+    std::vector<Vec2> silhouette;
+  };
+  auto draw = [&](double spin, double tilt, int n, const std::function<Vec2(double, double)>& uv) -> std::optional<Drawn> {
+    Drawn d;
+    d.options.spin = spin;
+    d.options.tilt = tilt;
+    const auto plane = extrusion_reference_plane(model, base, cam, d.options);
+    if (!plane) {
+      std::printf("extrusion plane: refused: %s\n", plane.message().c_str());
+      return std::nullopt;
+    }
+    Camera side = cam;
+    side.eye = plane->centre + 4.0 * plane->plane.normal;
+    side.target = plane->centre;
+    side.up = plane->normal_axis;
+    d.options.silhouette_camera = side;
+    double lo = 1e300, hi = -1e300;
+    for (const auto& q : plane->base_curve) {
+      lo = std::min(lo, (q - plane->centre).dot(plane->across));
+      hi = std::max(hi, (q - plane->centre).dot(plane->across));
+    }
+    for (int i = 0; i <= n; ++i) {
+      const Vec2 q = uv(static_cast<double>(i) / n, hi - lo);
+      const Vec3 p = plane->centre + (0.5 * (lo + hi) + q.x()) * plane->across + q.y() * plane->normal_axis;
+      const auto w = side.project(p);
+      d.silhouette.emplace_back(w->x(), w->y());
+    }
+    return d;
+  };
+  // Half an ellipse across 0.95 of the base, `height` high (negative: into the model).
+  auto arch = [](double height) {
+    return [height](double t, double width) {
+      return Vec2(-0.475 * width * std::cos(M_PI * t), height * std::sin(M_PI * t));
+    };
+  };
+  // A U 2.4 deep through the sphere and out at its back, sides 0.9 of the base apart, its
+  // bottom moved 0.8 along `across` (by 0.8 f^2 at the fraction f of the depth): a bent tunnel.
+  auto bent_u = [](double t, double width) {
+    const double depth = 2.4, r = 0.45 * width, s = 3.0 * t;
+    Vec2 q = s < 1.0   ? Vec2(-r, -(depth - r) * s)
+             : s < 2.0 ? Vec2(-r * std::cos(M_PI * (s - 1.0)), -(depth - r) - r * std::sin(M_PI * (s - 1.0)))
+                       : Vec2(r, -(depth - r) * (3.0 - s));
+    q.x() += 0.8 * std::pow(-q.y() / depth, 2);
+    return q;
+  };
+  struct Case {
+    const char* name;
+    std::optional<Drawn> drawn;
+  };
+  const Case cases[] = {
+      {"extrude (loop + silhouette)", draw(0.0, 0.0, 40, arch(0.5))},
+      {"extrude (turned plane)", draw(0.6, 0.5, 40, arch(0.5))},
+      {"dig (pocket 0.5 deep)", draw(0.0, 0.0, 40, arch(-0.5))},
+      {"dig (bent tunnel)", draw(0.0, 0.0, 60, bent_u)},
+  };
+  for (const auto& c : cases) {
+    if (!c.drawn) return 1;
+    run(c.name, reps, [&] { return extrude_by_strokes(model, base, c.drawn->silhouette, cam, c.drawn->options).status(); });
   }
-  ExtrudeOptions eo;
-  Camera side = cam;
-  side.eye = plane->centre + 4.0 * plane->plane.normal;
-  side.target = plane->centre;
-  side.up = plane->normal_axis;
-  eo.silhouette_camera = side;
-  double lo = 1e300, hi = -1e300;
-  for (const auto& q : plane->base_curve) {
-    lo = std::min(lo, (q - plane->centre).dot(plane->across));
-    hi = std::max(hi, (q - plane->centre).dot(plane->across));
-  }
-  std::vector<Vec2> silhouette;
-  for (int i = 0; i <= 40; ++i) {
-    const double t = M_PI * i / 40;
-    const Vec3 p = plane->centre + (0.5 * (lo + hi) - 0.475 * (hi - lo) * std::cos(t)) * plane->across +
-                   0.5 * std::sin(t) * plane->normal_axis;
-    const auto w = side.project(p);
-    silhouette.emplace_back(w->x(), w->y());
-  }
-  run("extrude (loop + silhouette)", reps, [&] { return extrude_by_strokes(model, base, silhouette, cam, eo).status(); });
   return 0;
 }

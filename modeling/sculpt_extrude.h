@@ -3,7 +3,9 @@
 // selects a region and gives the base curve; a reference plane orthogonal to that region is made
 // through the stroke's centre; a silhouette stroke drawn on that plane defines the new part,
 // which is the base curve swept along the silhouette's skeleton and joined to the model by exact
-// union (mesh_boolean.h), the join then smoothed. docs/sculpting.md, "Extrusion", says exactly
+// union (mesh_boolean.h), the join then smoothed. A silhouette drawn into the model digs instead:
+// the part is subtracted, a pocket, or a tunnel (genus + 1) when it comes out at the back; the
+// skeleton follows the silhouette, so a bent silhouette bends the tunnel. docs/sculpting.md, "Extrusion", says exactly
 // what is built and why.
 //
 // Strokes are in window pixels (x right, y down). The base stroke is drawn under `camera`; the
@@ -36,6 +38,11 @@ struct ExtrudeOptions {
   double end_tolerance = 0.35;
 };
 
+// Whether spin and tilt (ExtrudeOptions) turn the reference plane acceptably: spin any finite
+// angle; tilt strictly between -pi/2 and pi/2 (at +-pi/2 the normal axis would lie in the
+// surface). Else the reason.
+Status check_plane_rotation(double spin, double tilt);
+
 // The automatic reference plane (what the app shows while the user draws the silhouette).
 struct ExtrudePlane {
   Plane plane;                      // the reference plane (contains centre, normal_axis, across)
@@ -59,7 +66,9 @@ struct ExtrudeReport {
   int smoothed_vertices = 0;    // vertices moved by the join smoothing
   int smooth_steps = 0;         // smoothing steps actually applied
   int boolean_attempts = 0;     // 1, or more when the part was nudged after a rounding fold
-  double added_volume = 0.0;    // volume(result) - volume(model)
+  double added_volume = 0.0;    // volume(result) - volume(model) (negative when digging)
+  bool dug = false;             // the silhouette went into the model: the part was subtracted
+  int genus_change = 0;         // 1 when the dug part came out at the back (a tunnel)
 };
 
 Result<TriMesh> extrude_by_strokes(const TriMesh& model, const std::vector<Vec2>& base_stroke_px,

@@ -54,6 +54,11 @@ json op_json(const SessionOp& op) {
     if (s->kind == SculptOp::Kind::kExtrude) {
       j["silhouette"] = points(s->silhouette);
       j["silhouette_camera"] = camera_json(s->silhouette_camera);
+      // Written only when the plane was turned, so files of unturned extrusions read anywhere.
+      if (s->spin != 0.0 || s->tilt != 0.0) {
+        j["spin"] = s->spin;
+        j["tilt"] = s->tilt;
+      }
     }
   } else if (const auto* d = std::get_if<DeformOp>(&op)) {
     j["kind"] = "deform";
@@ -254,9 +259,12 @@ SessionOp op_from(const json& j, const std::string& path) {
       s.side = vec_n<2>(get("side"), key("side"));
     } else if (kind == "extrude") {
       s.kind = SculptOp::Kind::kExtrude;
-      object(j, path, {"kind", "stroke", "camera", "silhouette", "silhouette_camera"});
+      object(j, path, {"kind", "stroke", "camera", "silhouette", "silhouette_camera", "spin", "tilt"});
       s.silhouette = points_from(get("silhouette"), key("silhouette"));
       s.silhouette_camera = camera_from(get("silhouette_camera"), key("silhouette_camera"));
+      // Optional (absent: the plane was not turned); the range is checked when the op is applied.
+      if (j.contains("spin")) s.spin = number(get("spin"), key("spin"));
+      if (j.contains("tilt")) s.tilt = number(get("tilt"), key("tilt"));
     } else {
       s.kind = kind == "tunnel" ? SculptOp::Kind::kTunnel : SculptOp::Kind::kSmooth;
       object(j, path, {"kind", "stroke", "camera"});

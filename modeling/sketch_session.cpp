@@ -304,6 +304,8 @@ Result<TriMesh> apply_sculpt(const TriMesh& model, const SculptOp& op) {
     case SculptOp::Kind::kExtrude: {
       ExtrudeOptions eo;
       eo.silhouette_camera = op.silhouette_camera;
+      eo.spin = op.spin;
+      eo.tilt = op.tilt;
       return extrude_by_strokes(model, op.stroke, op.silhouette, op.camera, eo);
     }
   }

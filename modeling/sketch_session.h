@@ -45,6 +45,9 @@ struct SculptOp {
   // kExtrude: the silhouette stroke on the automatic reference plane, and its camera.
   std::vector<Vec2> silhouette;
   Camera silhouette_camera;
+  // kExtrude: the reference plane's rotations (ExtrudeOptions::spin, tilt; radians).
+  double spin = 0.0;
+  double tilt = 0.0;
 };
 const char* sculpt_kind_name(SculptOp::Kind kind);
 

@@ -2,9 +2,21 @@
 // Procedural closed meshes shared by tests and benchmarks (no data files needed).
 #include <cmath>
 
+#include "modeling/camera.h"
 #include "modeling/mesh.h"
 
 namespace ps::testing {
+
+// The sculpting tests' view: from (0, 0, 4) towards the origin, y up, 640 x 480, fov 40 deg.
+inline Camera front_camera() {
+  Camera c;
+  c.eye = Vec3(0, 0, 4);
+  c.target = Vec3::Zero();
+  c.up = Vec3(0, 1, 0);
+  c.width = 640;
+  c.height = 480;
+  return c;
+}
 
 // A UV sphere around c (poles on the y axis) with 2 * segments * (rings - 1) outward triangles.
 inline TriMesh uv_sphere(const Vec3& c, double r, int rings, int segments) {

@@ -18,15 +18,7 @@
 namespace ps {
 namespace {
 
-Camera front_camera() {
-  Camera c;
-  c.eye = Vec3(0, 0, 4);
-  c.target = Vec3::Zero();
-  c.up = Vec3(0, 1, 0);
-  c.width = 640;
-  c.height = 480;
-  return c;
-}
+using testing::front_camera;
 
 std::vector<Vec2> circle_px(const Vec2& c, double r, int n = 48) {
   std::vector<Vec2> s;
@@ -145,6 +137,22 @@ TEST(ExtrudePlane, SpinAndTiltTurnThePlaneAboutTheTwoAxes) {
   EXPECT_NEAR(p2->across.dot(p0->across), 1.0, 1e-12);
   EXPECT_NEAR(std::acos(std::clamp(p2->normal_axis.dot(p2->region_normal), -1.0, 1.0)), 0.3, 1e-9);
   EXPECT_NEAR(p2->plane.signed_distance(p2->centre), 0.0, 1e-12);
+}
+
+TEST(ExtrudePlane, RefusesATiltOfNinetyDegreesOrAnInfiniteSpin) {
+  const auto stroke = circle_px(Vec2(320, 240), 50);
+  ExtrudeOptions o;
+  o.tilt = M_PI / 2;
+  auto p = extrusion_reference_plane(sphere(), stroke, front_camera(), o);
+  ASSERT_FALSE(p);
+  EXPECT_NE(p.message().find("tilt must lie strictly between -90 and 90 degrees (found 90 degrees)"), std::string::npos)
+      << p.message();
+  o.tilt = -1.5;
+  EXPECT_TRUE(extrusion_reference_plane(sphere(), stroke, front_camera(), o));
+  o.spin = INFINITY;
+  p = extrusion_reference_plane(sphere(), stroke, front_camera(), o);
+  ASSERT_FALSE(p);
+  EXPECT_NE(p.message().find("spin is not a finite angle"), std::string::npos) << p.message();
 }
 
 // === Extrusion
@@ -312,6 +320,102 @@ TEST(Extrude, KeepsTheGenusOfATorus) {
   EXPECT_GT(t.signed_volume, signed_volume(tor));
 }
 
+// === Digging (thesis 3.2.2: a silhouette drawn into the model digs; out at the back: a tunnel)
+
+// Generalised winding number of a closed mesh about p: about 1 inside, 0 outside.
+double winding(const TriMesh& m, const Vec3& p) {
+  double sum = 0;
+  for (const auto& f : m.faces) {
+    const Vec3 a = m.vertices[static_cast<std::size_t>(f[0])] - p, b = m.vertices[static_cast<std::size_t>(f[1])] - p,
+               c = m.vertices[static_cast<std::size_t>(f[2])] - p;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    sum += 2 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb);
+  }
+  return sum / (4 * M_PI);
+}
+
+// A U into the model: straight sides 0.9 of the base's width apart down to `depth`, a round
+// bottom, every point shifted along `across` by lean * (its depth / depth)^2 (a bent skeleton).
+std::vector<Vec2> u_px(const ExtrudePlane& p, const Camera& cam, double depth, double lean) {
+  double half = 0, mid = 0;
+  base_extent(p, half, mid);
+  const double r = 0.9 * half;
+  std::vector<Vec2> uv;
+  for (int i = 0; i <= 20; ++i) uv.emplace_back(mid - r, -(depth - r) * i / 20.0);
+  for (int i = 1; i < 20; ++i) {
+    const double t = M_PI * i / 20;
+    uv.emplace_back(mid - r * std::cos(t), -(depth - r) - r * std::sin(t));
+  }
+  for (int i = 20; i >= 0; --i) uv.emplace_back(mid + r, -(depth - r) * i / 20.0);
+  std::vector<Vec2> px;
+  for (const auto& q : uv) {
+    const double f = -q.y() / depth;
+    const auto w = cam.project(on_plane(p, q.x() + lean * f * f, q.y()));
+    px.emplace_back(w->x(), w->y());
+  }
+  return px;
+}
+
+// A dig into the sphere: valid, one component, the genus (and the report's change) as given.
+void expect_dug(const TriMesh& out, const ExtrudeReport& rep, int genus) {
+  expect_valid(out);
+  const MeshTopology t = mesh_topology(out);
+  EXPECT_EQ(t.components, 1);
+  EXPECT_EQ(t.genus, genus);
+  EXPECT_TRUE(rep.dug);
+  EXPECT_EQ(rep.genus_change, genus);
+}
+
+TEST(Dig, SilhouetteIntoTheModelDigsAPocket) {
+  Strokes s = sphere_bump(Vec2(350, 220), 50, -0.5);
+  ExtrudeReport rep;
+  auto out = extrude_by_strokes(sphere(), s.base, s.silhouette, s.cam, s.options, &rep);
+  ASSERT_TRUE(out) << out.message();
+  expect_dug(*out, rep, 0);
+  double half = 0, mid = 0;
+  base_extent(s.plane, half, mid);
+  const double half_ellipsoid = 2.0 / 3.0 * M_PI * std::pow(0.95 * half, 2) * 0.5;
+  std::printf("pocket: removed %.4f (half ellipsoid %.4f), join %d vertices, %d smoothing steps\n", -rep.added_volume,
+              half_ellipsoid, rep.join_vertices, rep.smooth_steps);
+  EXPECT_LT(rep.added_volume, -0.8 * half_ellipsoid);
+  EXPECT_GT(rep.added_volume, -1.2 * half_ellipsoid);
+  // Hollow 0.3 below the centre, solid 0.7 below (past the pocket's bottom).
+  EXPECT_LT(winding(*out, s.plane.centre - 0.3 * s.plane.normal_axis), 0.05);
+  EXPECT_GT(winding(*out, s.plane.centre - 0.7 * s.plane.normal_axis), 0.95);
+}
+
+TEST(Dig, SilhouetteOutAtTheBackDigsABentTunnel) {
+  const Camera cam = front_camera();
+  const auto base = circle_px(Vec2(350, 220), 50);
+  auto plane = extrusion_reference_plane(sphere(), base, cam);
+  ASSERT_TRUE(plane) << plane.message();
+  ExtrudeOptions o;
+  o.silhouette_camera = side_camera(*plane);
+  const double depth = 2.4, lean = 0.8;
+  ExtrudeReport rep;
+  auto out = extrude_by_strokes(sphere(), base, u_px(*plane, *o.silhouette_camera, depth, lean), cam, o, &rep);
+  ASSERT_TRUE(out) << out.message();
+  expect_dug(*out, rep, 1);
+  EXPECT_LT(rep.added_volume, -0.2);
+  // It folds when smoothed at the full join radius; half the radius smooths it.
+  EXPECT_GT(rep.smooth_steps, 0);
+  std::printf("bent tunnel: removed %.4f, %zu faces, join %d vertices, %d smoothing steps, %d attempt(s)\n",
+              -rep.added_volume, out->faces.size(), rep.join_vertices, rep.smooth_steps, rep.boolean_attempts);
+  // Along the bent skeleton the hole is open; on the straight line from the base, deep down
+  // where the skeleton has moved aside by more than the tunnel's radius, material is left.
+  const Vec3 c = plane->centre, n = plane->normal_axis, a = plane->across;
+  double half = 0, mid = 0;
+  base_extent(*plane, half, mid);
+  for (double f : {0.2, 0.4, 0.7}) {
+    const Vec3 bent = c + (mid + lean * f * f) * a - f * depth * n;
+    ASSERT_LT(bent.norm(), 0.95);
+    EXPECT_GT(winding(sphere(), bent), 0.95);
+    EXPECT_LT(winding(*out, bent), 0.05) << f;
+  }
+  const Vec3 straight = c + mid * a - 0.7 * depth * n;
+  EXPECT_GT(winding(*out, straight), 0.95);
+}
+
 // === Refusals: a message, and the model (a value) untouched.
 void expect_refused(const Result<TriMesh>& r, const std::string& words) {
   ASSERT_FALSE(r);
@@ -367,8 +471,18 @@ TEST(Extrude, RefusesBadSilhouettes) {
     }
     expect_refused(run(arch), "too close together");
   }
-  // Into the model.
-  expect_refused(run(bump_px(s.plane, sc, -0.5)), "into the model");
+  // Along the surface: a flat arc that runs sideways (its tip beside the ends, barely above).
+  {
+    double half = 0, mid = 0;
+    base_extent(s.plane, half, mid);
+    std::vector<Vec2> flat;
+    for (int i = 0; i <= 20; ++i) {
+      const double t = M_PI * i / 20;
+      const auto w = sc.project(on_plane(s.plane, mid - 0.95 * half * std::cos(t) + 0.8 * std::sin(t), 0.01 * std::sin(t)));
+      flat.emplace_back(w->x(), w->y());
+    }
+    expect_refused(run(flat), "runs along the surface");
+  }
   // The plane seen edge-on by the base camera (centred stroke: the plane contains the view axis).
   const auto centred = circle_px(Vec2(320, 240), 50);
   auto p = extrusion_reference_plane(sphere(), centred, s.cam);

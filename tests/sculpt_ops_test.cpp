@@ -18,15 +18,7 @@
 namespace ps {
 namespace {
 
-Camera front_camera() {
-  Camera c;
-  c.eye = Vec3(0, 0, 4);
-  c.target = Vec3::Zero();
-  c.up = Vec3(0, 1, 0);
-  c.width = 640;
-  c.height = 480;
-  return c;
-}
+using testing::front_camera;
 
 std::vector<Vec2> vertical_line(double x, double y0, double y1, int n = 40) {
   std::vector<Vec2> s;

@@ -173,6 +173,11 @@ TEST(SessionFiles, EveryOperationKindRoundTripsExactly) {
       op.silhouette_camera = cam(2.0);
     }
     st.ops.push_back(op);
+    if (kind == SculptOp::Kind::kExtrude) {  // the same on a turned reference plane
+      op.spin = -1.0 / 3.0;
+      op.tilt = M_PI / 7.0;
+      st.ops.push_back(op);
+    }
   }
   DeformOp d;
   d.handle = {Vec2(1.1, 2.2), Vec2(3.3, 4.4)};
@@ -205,8 +210,14 @@ TEST(SessionFiles, EveryOperationKindRoundTripsExactly) {
   EXPECT_TRUE(f->state.model.empty());  // the model is never read from the document
   f->state.model = st.model;
   EXPECT_EQ(session_to_json(f->params, f->state, f->mesh), text);
-  ASSERT_EQ(f->state.ops.size(), 6u);
-  const auto& d2 = std::get<DeformOp>(f->state.ops[4]);
+  ASSERT_EQ(f->state.ops.size(), 7u);
+  // The plane's rotation is written only when it was turned, and read back exactly.
+  const json doc = json::parse(text);
+  EXPECT_FALSE(doc["ops"][3].contains("spin") || doc["ops"][3].contains("tilt"));
+  EXPECT_EQ(std::get<SculptOp>(f->state.ops[3]).spin, 0.0);
+  EXPECT_EQ(std::get<SculptOp>(f->state.ops[4]).spin, -1.0 / 3.0);
+  EXPECT_EQ(std::get<SculptOp>(f->state.ops[4]).tilt, M_PI / 7.0);
+  const auto& d2 = std::get<DeformOp>(f->state.ops[5]);
   EXPECT_EQ(d2.plane_rotation, d.plane_rotation);
   EXPECT_EQ(d2.lambda, d.lambda);
   EXPECT_EQ(d2.shadow, d.shadow);
@@ -220,7 +231,7 @@ TEST(SessionFiles, EveryOperationKindRoundTripsExactly) {
   EXPECT_EQ(cut.side, Vec2(1.0 / 3.0, 2.0 / 3.0));
   const auto& ex = std::get<SculptOp>(f->state.ops[3]);
   EXPECT_EQ(ex.silhouette, std::get<SculptOp>(st.ops[3]).silhouette);
-  EXPECT_EQ(std::get<StiffnessOp>(f->state.ops[5]).value, 0.7);
+  EXPECT_EQ(std::get<StiffnessOp>(f->state.ops[6]).value, 0.7);
   EXPECT_EQ(f->params.stroke.min_spacing_px, 12.5);
   EXPECT_EQ(f->params.improve_max_faces, 1234u);
   EXPECT_EQ(f->state.sections.planes[0].offset, 0.1 / 3.0);
@@ -301,6 +312,10 @@ TEST_F(BadSessionFiles, WrongTypes) {
   j = doc_;
   j["params"]["lambda"] = 1.5;
   expect_refused(j, "params.lambda: must lie in [0, 1]");
+  j = doc_;
+  j["ops"][0] = json{{"kind", "extrude"}, {"stroke", json::array()}, {"camera", j["ops"][0]["camera"]},
+                     {"silhouette", json::array()}, {"silhouette_camera", j["ops"][0]["camera"]}, {"tilt", "steep"}};
+  expect_refused(j, "ops[0].tilt: must be a number (found a string)");
 }
 
 TEST_F(BadSessionFiles, UnknownKindsAndFields) {
