@@ -131,6 +131,7 @@ std::shared_ptr<const PreviewSnapshot> PreviewWorker::snapshot() const {
   auto s = std::make_shared<PreviewSnapshot>();
   s->state = driver_.session().state();
   s->messages = driver_.messages();
+  s->notices = driver_.notices();
   s->events_applied = applied_;
   s->strokes_applied = strokes_applied_;
   s->rebuild_ms = driver_.stroke_latencies_ms();

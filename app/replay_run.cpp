@@ -86,6 +86,9 @@ void run_replay(const StrokeLog& log, const std::string& name, const ReplayOptio
 
   for (const auto& m : driver.messages())
     std::cerr << "planesketch: " << name << ": t=" << m.t << " ms: " << m.text << "\n";
+  if (!o.quiet)
+    for (const auto& m : driver.notices())
+      std::cerr << "planesketch: " << name << ": t=" << m.t << " ms: note: " << m.text << "\n";
   const auto& st = driver.session().state();
   if (!o.quiet)
     std::cerr << "planesketch: replayed " << log.events.size() << " events: " << st.sections.curves.size()
@@ -123,6 +126,8 @@ void run_replay(const StrokeLog& log, const std::string& name, const ReplayOptio
     j["refused"] = nlohmann::json::array();
     for (const auto& m : driver.messages()) j["refused"].push_back({{"t", m.t}, {"message", m.text}});
     j["hints"] = st.hints;
+    j["notices"] = nlohmann::json::array();
+    for (const auto& m : driver.notices()) j["notices"].push_back({{"t", m.t}, {"message", m.text}});
     j["stroke_latency_ms"] = driver.stroke_latencies_ms();
     for (const auto& [k, v] : report_extra.items()) j[k] = v;
     report_text = j.dump(2) + "\n";

@@ -5,6 +5,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "app/journal.h"
 #include "modeling/mesh_io.h"
 #include "modeling/sculpt_cut.h"
 #include "modeling/session_io.h"
@@ -174,11 +175,21 @@ void SessionDriver::on_stroke(const Stroke& stroke) {
     return;
   }
   const auto t0 = std::chrono::steady_clock::now();
-  if (auto st = session_.add_window_stroke(pts, input_.camera, *plane); !st) {
+  StrokeEdit edit;
+  if (auto st = session_.add_window_stroke(pts, input_.camera, *plane, &edit); !st) {
     report(t, 0, "stroke refused: " + st.message());
     return;
   }
   latencies_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  const std::string section = "section " + std::to_string(edit.section);
+  if (edit.kind == StrokeEdit::Kind::kOversketch)
+    notices_.push_back(DriverMessage{t, 0, "the stroke oversketched " + section + " (the part it runs along was replaced)"});
+  if (edit.kind == StrokeEdit::Kind::kCompletion)
+    notices_.push_back(DriverMessage{t, 0, "the stroke was completed from the model's cross section into " + section});
+  if (edit.parts_after > edit.parts_before && edit.parts_before > 0)
+    notices_.push_back(DriverMessage{t, 0, section + " makes a separate part: the model now has " +
+                                               std::to_string(edit.parts_after) +
+                                               " parts (a section through the marked crossing points joins them)"});
   changed();
 }
 

@@ -34,6 +34,10 @@ class SessionDriver : public EventSink {
   const Camera& initial_camera() const { return initial_camera_; }
   // Refused strokes and actions, in order (the model was left unchanged for each).
   const std::vector<DriverMessage>& messages() const { return messages_; }
+  // Accepted sketch strokes that deserve a word, in order: an open stroke that oversketched a
+  // section or was completed from the model's cross section, and a section that made a new
+  // separate part of the model (thesis 3.2.1: "a hint will be given to the user").
+  const std::vector<DriverMessage>& notices() const { return notices_; }
   // Wall time from pen-up to the rebuilt model, per accepted sketch stroke (ms).
   const std::vector<double>& stroke_latencies_ms() const { return latencies_; }
   // Called after every change of the model (accepted stroke, delete, undo, redo).
@@ -64,6 +68,7 @@ class SessionDriver : public EventSink {
   InputState input_;
   Camera initial_camera_;
   std::vector<DriverMessage> messages_;
+  std::vector<DriverMessage> notices_;
   std::vector<double> latencies_;
   std::vector<Vec2> pending_cut_;  // a cutting stroke waiting for the stroke that marks the side
   std::vector<Vec2> pending_base_;  // an extrusion's base stroke waiting for its silhouette
