@@ -27,7 +27,8 @@
 // Files (docs/session-format.md): --session S.json is loaded at start when it exists; Ctrl+S
 // saves the session there and Ctrl+E exports the model to --export FILE (both journaled `save`
 // actions, carried out on the worker after the events before them); Ctrl+O loads S.json again
-// (replacing the session, history cleared); --import MESH starts from a mesh as the base.
+// (replacing the session, history cleared); --import MESH starts from a mesh as the base. Every
+// open is a journaled `open` event with the file's digest, so recovery restores the same model.
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
@@ -125,8 +126,8 @@ class WindowApp {
                                           : "not saved: " + st.message())
                 << "\n";
     });
-    if (!o_.import_mesh.empty()) worker_->import_mesh(o_.import_mesh);
-    if (!o_.session.empty() && std::filesystem::exists(o_.session)) worker_->load_session(o_.session);
+    if (!o_.import_mesh.empty()) open_file("mesh", o_.import_mesh, 0.0);
+    if (!o_.session.empty() && std::filesystem::exists(o_.session)) open_file("session", o_.session, 0.0);
 
     if (!o_.replay.empty()) {
       run_replay();
@@ -247,6 +248,9 @@ class WindowApp {
     auto rec = ps::StrokeRecorder::open(journal, header);
     if (!rec) throw ps::app::CommandFailed("cannot open the journal: " + rec.message());
     recorder_.emplace(std::move(*rec));
+    // Files opened at start come first: the replayed events (if any) were applied after them.
+    for (const auto& e : startup_opens_)
+      if (auto st = recorder_->record(e.t, e.event); !st) throw ps::app::CommandFailed("cannot write the journal: " + st.message());
     double t_origin = 0.0;
     if (replayed_) {
       for (const auto& e : replayed_->events)
@@ -294,6 +298,23 @@ class WindowApp {
       win_->poll_events();
     } else {
       glfwWaitEventsTimeout(timeout_s);
+    }
+  }
+
+  // Opens a session file or a base mesh as a journaled `open` event (docs/stroke-log.md): the
+  // driver loads it on the worker, and recovery opens the same file again, refusing one whose
+  // content changed. Before the journal exists (files given at start) the event waits for it.
+  void open_file(const std::string& kind, const std::string& path, double t) {
+    auto ev = ps::app::open_file_event(kind, path);
+    if (!ev) {
+      std::cerr << "planesketch: " << (kind == "mesh" ? "mesh not imported: " : "session not loaded: ") << ev.message() << "\n";
+      return;
+    }
+    if (recorder_) {
+      act(t, *ev);
+    } else {
+      startup_opens_.push_back(ps::TimedEvent{t, 0, *ev});
+      worker_->on_action(startup_opens_.back());
     }
   }
 
@@ -358,7 +379,7 @@ class WindowApp {
     }
     if (ctrl && pressed(GLFW_KEY_O)) {
       if (o_.session.empty()) std::cerr << "planesketch: Ctrl+O opens --session FILE.json; none was given\n";
-      else worker_->load_session(o_.session, t);
+      else open_file("session", o_.session, t);
       need_redraw_ = true;
     }
     if (!ctrl && pressed(GLFW_KEY_E)) eraser_ = !eraser_;
@@ -618,6 +639,7 @@ class WindowApp {
   std::shared_ptr<const ps::app::PreviewSnapshot> shown_;
   std::optional<ps::StrokeRecorder> recorder_;
   std::optional<ps::StrokeLog> replayed_;
+  std::vector<ps::TimedEvent> startup_opens_;  // files opened before the journal, journaled first
   ps::StrokeGrouper grouper_;
   std::vector<ps::Vec3> live_;
   std::size_t seen_messages_ = 0, seen_notices_ = 0;

@@ -9,7 +9,7 @@ namespace {
 // Actions the session applies to the model; everything else only changes the input state.
 bool action_changes_model(const Event& e) {
   return std::holds_alternative<Undo>(e) || std::holds_alternative<Redo>(e) ||
-         std::holds_alternative<DeleteSection>(e);
+         std::holds_alternative<DeleteSection>(e) || std::holds_alternative<OpenFile>(e);
 }
 
 }  // namespace

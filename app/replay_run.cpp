@@ -60,11 +60,17 @@ void run_replay(const StrokeLog& log, const std::string& name, const ReplayOptio
   params.improve = !o.no_improve;
   SessionDriver driver(params);
   // The session's start: an imported mesh or a saved session (refused: nothing is replayed).
-  if (!o.base_mesh.empty())
+  // A journal records it first, as the `open` event recovery replays.
+  std::optional<Result<OpenFile>> opened;
+  if (!o.base_mesh.empty()) {
     if (auto st = driver.import_mesh(0.0, o.base_mesh); !st) throw CommandFailed(st.message());
+    opened = open_file_event("mesh", o.base_mesh);
+  }
   // (A loaded session brings its own parameters, --no-improve included.)
-  if (!o.start_session.empty())
+  if (!o.start_session.empty()) {
     if (auto st = driver.load_session(0.0, o.start_session); !st) throw CommandFailed(st.message());
+    opened = open_file_event("session", o.start_session);
+  }
 
   // Pacing only decides when events arrive (docs/stroke-log.md, "Replay").
   StrokeReplayer::PaceFn pace;
@@ -76,6 +82,10 @@ void run_replay(const StrokeLog& log, const std::string& name, const ReplayOptio
     // The journal continues the replayed log: same header, the events as they are applied.
     auto rec = StrokeRecorder::open(o.journal, log.header);
     if (!rec) throw CommandFailed("cannot open the journal: " + rec.message());
+    if (opened) {
+      if (!*opened) throw CommandFailed("cannot journal the opened file: " + opened->message());
+      if (auto st = rec->record(0.0, **opened); !st) throw CommandFailed("cannot write the journal: " + st.message());
+    }
     JournalingSink sink(*rec, driver);
     replay_all_paced(log, sink, pace);
     if (auto st = rec->finish(log.events.empty() ? 0.0 : log.events.back().t); !st)

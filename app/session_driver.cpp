@@ -70,6 +70,8 @@ void SessionDriver::on_action(const TimedEvent& e) {
           if (auto st = input_.apply(e.event); !st) report(e.t, e.line, st.message());
         } else if constexpr (std::is_same_v<T, Save>) {
           if (on_save) on_save(a.path);
+        } else if constexpr (std::is_same_v<T, OpenFile>) {
+          (void)open_file(e.t, e.line, a);
         } else if constexpr (std::is_same_v<T, PenSample>) {
           on_pen_sample(a);
         } else if constexpr (std::is_same_v<T, SetToolMode>) {
@@ -119,6 +121,20 @@ Status SessionDriver::import_mesh(double t, const std::string& path) {
   drop_pending();
   changed();
   return Status::ok();
+}
+
+Status SessionDriver::open_file(double t, int line, const OpenFile& file) {
+  const std::string refused = file.kind == "mesh" ? "mesh not imported: " : "session not loaded: ";
+  auto digest = file_digest(file.path);
+  Status st = digest ? Status::ok() : digest.status();
+  if (digest && *digest != file.digest)
+    st = Status::error(file.path + ": the file changed since the session opened it (digest " + file.digest + " then, " +
+                       *digest + " now): it would not give the same model");
+  if (!st) {
+    report(t, line, refused + st.message());
+    return Status::error(refused + st.message());
+  }
+  return file.kind == "mesh" ? import_mesh(t, file.path) : load_session(t, file.path);
 }
 
 void SessionDriver::on_stroke(const Stroke& stroke) {

@@ -52,6 +52,10 @@ class SessionDriver : public EventSink {
   // reported as a message too.
   Status load_session(double t, const std::string& path);
   Status import_mesh(double t, const std::string& path);
+  // A journaled `open` event (also what on_action does with one): the file is loaded or
+  // imported as above only when its content still has the event's digest; otherwise it is
+  // refused with a message (the journal would rebuild a different model from it).
+  Status open_file(double t, int line, const OpenFile& file);
 
  private:
   void report(double t, int line, const std::string& text);
