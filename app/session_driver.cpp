@@ -202,6 +202,8 @@ void SessionDriver::on_stroke(const Stroke& stroke) {
     notices_.push_back(DriverMessage{t, 0, "the stroke oversketched " + section + " (the part it runs along was replaced)"});
   if (edit.kind == StrokeEdit::Kind::kCompletion)
     notices_.push_back(DriverMessage{t, 0, "the stroke was completed from the model's cross section into " + section});
+  if (edit.kind == StrokeEdit::Kind::kMirrored)
+    notices_.push_back(DriverMessage{t, 0, "the open stroke was closed by its mirror image about the line between its ends: " + section});
   if (edit.parts_after > edit.parts_before && edit.parts_before > 0)
     notices_.push_back(DriverMessage{t, 0, section + " makes a separate part: the model now has " +
                                                std::to_string(edit.parts_after) +

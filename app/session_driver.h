@@ -35,8 +35,9 @@ class SessionDriver : public EventSink {
   // Refused strokes and actions, in order (the model was left unchanged for each).
   const std::vector<DriverMessage>& messages() const { return messages_; }
   // Accepted sketch strokes that deserve a word, in order: an open stroke that oversketched a
-  // section or was completed from the model's cross section, and a section that made a new
-  // separate part of the model (thesis 3.2.1: "a hint will be given to the user").
+  // section, was completed from the model's cross section or was mirrored about its chord,
+  // and a section that made a new separate part of the model (thesis 4.4: "a hint will be
+  // given to the user").
   const std::vector<DriverMessage>& notices() const { return notices_; }
   // Wall time from pen-up to the rebuilt model, per accepted sketch stroke (ms).
   const std::vector<double>& stroke_latencies_ms() const { return latencies_; }

@@ -174,4 +174,27 @@ Result<Splice> splice_open_stroke(const std::vector<Vec2>& closed, const std::ve
   return out;
 }
 
+std::optional<std::vector<Vec2>> mirror_about_chord(const std::vector<Vec2>& open) {
+  if (open.size() < 3) return std::nullopt;
+  for (const Vec2& p : open)
+    if (!p.allFinite()) return std::nullopt;
+  const Vec2 a = open.front(), chord = open.back() - a;
+  const double len = chord.norm();
+  if (!(len > 0.0)) return std::nullopt;
+  const Vec2 dir = chord / len, normal(-dir.y(), dir.x());
+  int side = 0;
+  for (std::size_t i = 1; i + 1 < open.size(); ++i) {
+    const double d = (open[i] - a).dot(normal);
+    const int s = d > 1e-9 * len ? 1 : d < -1e-9 * len ? -1 : 0;
+    if (s == 0 || (side != 0 && s != side)) return std::nullopt;
+    side = s;
+  }
+  std::vector<Vec2> closed = open;
+  for (std::size_t i = open.size() - 1; i-- > 1;) {
+    const Vec2 q = open[i] - a;
+    closed.push_back(a + q.dot(dir) * dir - q.dot(normal) * normal);
+  }
+  return closed;
+}
+
 }  // namespace ps

@@ -21,6 +21,7 @@
 // kept points on each side (moved by 0.7, 0.4 and 0.1 of it). Every other kept point keeps its
 // bits.
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "modeling/mesh.h"
@@ -58,5 +59,12 @@ struct SpliceBlend {
 // touches itself.
 Result<Splice> splice_open_stroke(const std::vector<Vec2>& closed, const std::vector<Vec2>& open, double snap,
                                   const SpliceBlend& blend = {});
+
+// An open stroke with no curve under its ends (thesis-facts: the original did this): when every
+// inner point lies strictly on one side of the chord from its first to its last point (farther
+// than 1e-9 of the chord's length), the closed curve made of the stroke and its mirror image
+// in the chord (the image's points in reverse, the ends shared); nothing otherwise (a stroke
+// that crosses or touches its chord, or has no inner point).
+std::optional<std::vector<Vec2>> mirror_about_chord(const std::vector<Vec2>& open);
 
 }  // namespace ps

@@ -456,6 +456,14 @@ Status SketchSession::edit_by_open_stroke(const std::vector<Vec2>& window_points
       return Status::ok();
     }
   }
+  // === Nothing under its ends: a stroke on one side of its chord is closed by its mirror image.
+  if (const auto closed = mirror_about_chord(stroke)) {
+    if (auto st = add_section(pl, to_3d(*closed)); !st) return Status::error("the stroke mirrored about its chord: " + st.message());
+    edit.kind = StrokeEdit::Kind::kMirrored;
+    edit.section = static_cast<int>(state_.sections.curves.size()) - 1;
+    return Status::ok();
+  }
+  why << ", or when it lies on one side of the line between its ends (it is then mirrored about that line)";
   return Status::error(why.str());
 }
 

@@ -43,6 +43,7 @@ struct StrokeEdit {
     kNewSection,  // a closed stroke: a new section
     kOversketch,  // an open stroke replaced the part of section `section` it runs along
     kCompletion,  // an open stroke completed from the model's cross section: new section `section`
+    kMirrored,    // an open stroke with nothing under its ends, closed by its mirror image in its chord
   };
   Kind kind = Kind::kNewSection;
   int section = -1;                       // index of the new or edited section
@@ -172,8 +173,9 @@ class SketchSession {
   // within `oversketch_snap_px` of a section on the same plane oversketches it: the part it
   // runs along is replaced, the section keeps its index. Otherwise, when both ends come that
   // close to one curve of the model's cross section by the plane, the stroke is completed by
-  // the rest of that curve into a new section. Otherwise it is refused as open. `edit`, when
-  // given, says what an accepted stroke did.
+  // the rest of that curve into a new section. Otherwise, when it lies on one side of its
+  // chord, it is closed by its mirror image in the chord (modeling/section_oversketch.h);
+  // otherwise it is refused as open. `edit`, when given, says what an accepted stroke did.
   Status add_window_stroke(const std::vector<Vec2>& window_points, const Camera& camera,
                            const Plane& plane, StrokeEdit* edit = nullptr);
   // A closed curve given in 3D on `plane` (points are projected onto it).

@@ -32,7 +32,7 @@ double angle_of(const Vec2& p) { return std::atan2(p.y(), p.x()); }
 
 bool contains(const std::vector<Vec2>& pts, const Vec2& p) { return std::find(pts.begin(), pts.end(), p) != pts.end(); }
 
-double area(const std::vector<Vec2>& pts) { return signed_area_2d(pts); }
+double area(const std::vector<Vec2>& pts) { return 0.5 * signed_area_2d(pts); }
 
 // An arc from angle a0 to a1 (radians) whose radius rises from r_end at the ends to r_mid halfway.
 std::vector<Vec2> bulge(double a0, double a1, double r_end, double r_mid, int n) {
@@ -131,6 +131,27 @@ TEST(SectionOversketch, RefusalsNameTheReason) {
   EXPECT_FALSE(splice_open_stroke(c, {{1.0, 0.0}, {std::nan(""), 1.0}, {0.0, 1.0}}, 0.05));
   EXPECT_FALSE(splice_open_stroke(c, bulge(-0.5, 0.5, 1.0, 1.3, 10), 0.0));
   EXPECT_FALSE(splice_open_stroke(c, bulge(-0.5, 0.5, 1.0, 1.3, 10), 0.05, SpliceBlend{1.5, {}}));
+}
+
+TEST(SectionOversketch, AStrokeOnOneSideOfItsChordIsMirroredAboutIt) {
+  std::vector<Vec2> half;  // the upper half of the unit circle, from (1, 0) to (-1, 0)
+  for (int i = 0; i <= 32; ++i) half.emplace_back(std::cos(M_PI * i / 32), std::sin(M_PI * i / 32));
+  const auto closed = mirror_about_chord(half);
+  ASSERT_TRUE(closed.has_value());
+  ASSERT_EQ(closed->size(), 64u);  // 33 drawn points and the 31 inner ones mirrored
+  EXPECT_FALSE(first_self_crossing(*closed).has_value());
+  for (std::size_t i = 1; i < 32; ++i) {
+    const Vec2& m = (*closed)[64 - i];  // the image of point i
+    EXPECT_NEAR(m.x(), half[i].x(), 1e-15);
+    EXPECT_NEAR(m.y(), -half[i].y(), 1e-15);
+  }
+  EXPECT_NEAR(std::abs(area(*closed)), M_PI, 0.01);
+  // Crossing or touching the chord, or straight: nothing to mirror.
+  std::vector<Vec2> s_curve = {{0, 0}, {1, 0.5}, {2, -0.5}, {3, 0}};
+  EXPECT_FALSE(mirror_about_chord(s_curve).has_value());
+  EXPECT_FALSE(mirror_about_chord({{0, 0}, {1, 0}, {2, 0}}).has_value());
+  EXPECT_FALSE(mirror_about_chord({{0, 0}, {1, 1}, {2, 0}, {3, 1}, {4, 0}}).has_value());
+  EXPECT_FALSE(mirror_about_chord({{0, 0}, {2, 0}}).has_value());
 }
 
 // === Guides on the selected plane
@@ -316,6 +337,29 @@ TEST(SessionOversketch, OpenStrokeAwayFromEverythingIsRefusedAndChangesNothing) 
   EXPECT_EQ(s.state().model.vertices, before.model.vertices);
   ASSERT_TRUE(s.undo());  // the last add_section, not a phantom edit
   EXPECT_EQ(s.state().sections.curves.size(), 2u);
+}
+
+TEST(SessionOversketch, AnArcWithNothingUnderItsEndsIsMirroredIntoASection) {
+  SketchSession s = blob();
+  const Camera cam = top_camera();
+  std::vector<Vec2> arc;  // an arch in the view's top left corner, away from the model
+  for (int i = 0; i <= 24; ++i) arc.push_back(Vec2(100, 120) + 50.0 * Vec2(std::cos(M_PI * i / 24), -std::sin(M_PI * i / 24)));
+  StrokeEdit edit;
+  const Status st = s.add_window_stroke(arc, cam, axis_plane(2, 0.05), &edit);
+  ASSERT_TRUE(st) << st.message();
+  EXPECT_EQ(edit.kind, StrokeEdit::Kind::kMirrored);
+  EXPECT_EQ(edit.section, 3);
+  EXPECT_EQ(edit.parts_before, 1);
+  const auto& c = s.state().sections.curves[3].points;
+  // Symmetric about the chord (window row 120, i.e. one world y): as many points above as below.
+  const double chord_y = cam.lift(100, 120, axis_plane(2, 0.05))->y();
+  std::size_t above = 0, below = 0;
+  for (const Vec3& p : c) {
+    above += p.y() > chord_y + 1e-9 ? 1u : 0u;
+    below += p.y() < chord_y - 1e-9 ? 1u : 0u;
+  }
+  EXPECT_GT(above, 5u);
+  EXPECT_EQ(above, below);
 }
 
 TEST(SessionOversketch, ASectionAwayFromTheModelIsReportedAsASeparatePart) {
