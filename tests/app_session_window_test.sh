@@ -3,14 +3,7 @@
 # xvfb-run): `--session S.json` is loaded through the preview worker before the replayed events,
 # so the screenshot shows the saved model (it differs from the empty session's), and a bad
 # session file is reported as one message naming the JSON problem while the window goes on.
-set -euo pipefail
-bin="${PLANESKETCH_BINARY:?}"
-src="${PLANESKETCH_SOURCE_DIR:?}"
-if ! command -v xvfb-run >/dev/null 2>&1; then echo "skipped: no xvfb-run"; exit 0; fi
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
-win() { timeout 300 xvfb-run -a -s '-screen 0 1280x800x24' "$bin" window --no-panel --size 640x400 "$@"; }
+source "${PLANESKETCH_SOURCE_DIR:?}/tests/xvfb_window.sh"
 
 python3 "$src/scripts/make-deform-log" --sketch-only "$tmp/sketch.jsonl"
 "$bin" replay "$tmp/sketch.jsonl" --save-session "$tmp/s.json" -q 2>/dev/null
