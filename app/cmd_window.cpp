@@ -13,7 +13,13 @@
 //
 // The panel (Dear ImGui, engine/window_presenter.h; off with --no-panel) picks the tool mode,
 // the reference plane and its offset, and lambda; each change is journaled and applied like
-// the keys below. It is shown for live input, not while a log is replayed.
+// the keys below, and it shows the newest refusal or notice. It is shown for live input, not
+// while a log is replayed.
+//
+// In sketch mode the selected plane carries its guides (app/session_scene.h): rings where
+// sections on other planes cross it (rule 4; faint once a section on the plane meets them) and
+// the model's cross section by it, half transparent. An open stroke oversketches a section it
+// starts and ends on, or is completed from that cross section (modeling/section_oversketch.h).
 //
 // Keys: 1/2/3 select the x/y/z plane (the view turns to face it), Up/Down move the selected plane
 // by 0.04, Ctrl+Z undo, Ctrl+Y redo, E toggles the mouse eraser, Esc quits. Left drag sketches;
@@ -21,7 +27,8 @@
 // Files (docs/session-format.md): --session S.json is loaded at start when it exists; Ctrl+S
 // saves the session there and Ctrl+E exports the model to --export FILE (both journaled `save`
 // actions, carried out on the worker after the events before them); Ctrl+O loads S.json again
-// (replacing the session, history cleared); --import MESH starts from a mesh as the base.
+// (replacing the session, history cleared); --import MESH starts from a mesh as the base. Every
+// open is a journaled `open` event with the file's digest, so recovery restores the same model.
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
@@ -37,6 +44,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <thread>
+#include <tuple>
 
 #include "app/commands.h"
 #include "modeling/session_io.h"
@@ -118,8 +126,8 @@ class WindowApp {
                                           : "not saved: " + st.message())
                 << "\n";
     });
-    if (!o_.import_mesh.empty()) worker_->import_mesh(o_.import_mesh);
-    if (!o_.session.empty() && std::filesystem::exists(o_.session)) worker_->load_session(o_.session);
+    if (!o_.import_mesh.empty()) open_file("mesh", o_.import_mesh, 0.0);
+    if (!o_.session.empty() && std::filesystem::exists(o_.session)) open_file("session", o_.session, 0.0);
 
     if (!o_.replay.empty()) {
       run_replay();
@@ -191,7 +199,9 @@ class WindowApp {
     frame(Clock::now(), true);
     const auto snap = worker_->latest();
     for (const auto& m : snap->messages) std::cerr << "planesketch: t=" << m.t << " ms: " << m.text << "\n";
+    for (const auto& m : snap->notices) std::cerr << "planesketch: t=" << m.t << " ms: note: " << m.text << "\n";
     seen_messages_ = snap->messages.size();
+    seen_notices_ = snap->notices.size();
     if (!o_.screenshot.empty()) screenshot();
   }
 
@@ -238,6 +248,9 @@ class WindowApp {
     auto rec = ps::StrokeRecorder::open(journal, header);
     if (!rec) throw ps::app::CommandFailed("cannot open the journal: " + rec.message());
     recorder_.emplace(std::move(*rec));
+    // Files opened at start come first: the replayed events (if any) were applied after them.
+    for (const auto& e : startup_opens_)
+      if (auto st = recorder_->record(e.t, e.event); !st) throw ps::app::CommandFailed("cannot write the journal: " + st.message());
     double t_origin = 0.0;
     if (replayed_) {
       for (const auto& e : replayed_->events)
@@ -285,6 +298,23 @@ class WindowApp {
       win_->poll_events();
     } else {
       glfwWaitEventsTimeout(timeout_s);
+    }
+  }
+
+  // Opens a session file or a base mesh as a journaled `open` event (docs/stroke-log.md): the
+  // driver loads it on the worker, and recovery opens the same file again, refusing one whose
+  // content changed. Before the journal exists (files given at start) the event waits for it.
+  void open_file(const std::string& kind, const std::string& path, double t) {
+    auto ev = ps::app::open_file_event(kind, path);
+    if (!ev) {
+      std::cerr << "planesketch: " << (kind == "mesh" ? "mesh not imported: " : "session not loaded: ") << ev.message() << "\n";
+      return;
+    }
+    if (recorder_) {
+      act(t, *ev);
+    } else {
+      startup_opens_.push_back(ps::TimedEvent{t, 0, *ev});
+      worker_->on_action(startup_opens_.back());
     }
   }
 
@@ -349,7 +379,7 @@ class WindowApp {
     }
     if (ctrl && pressed(GLFW_KEY_O)) {
       if (o_.session.empty()) std::cerr << "planesketch: Ctrl+O opens --session FILE.json; none was given\n";
-      else worker_->load_session(o_.session, t);
+      else open_file("session", o_.session, t);
       need_redraw_ = true;
     }
     if (!ctrl && pressed(GLFW_KEY_E)) eraser_ = !eraser_;
@@ -427,8 +457,14 @@ class WindowApp {
       if (recorder_) {  // live: say at once why a stroke was refused
         for (std::size_t i = seen_messages_; i < snap->messages.size(); ++i)
           std::cerr << "planesketch: " << snap->messages[i].text << "\n";
-        seen_messages_ = snap->messages.size();
+        for (std::size_t i = seen_notices_; i < snap->notices.size(); ++i)
+          std::cerr << "planesketch: note: " << snap->notices[i].text << "\n";
       }
+      // The panel shows the newest refusal or notice until a newer one comes.
+      if (snap->messages.size() > seen_messages_) last_message_ = {snap->messages.back().text, true};
+      if (snap->notices.size() > seen_notices_) last_message_ = {snap->notices.back().text, false};
+      seen_messages_ = snap->messages.size();
+      seen_notices_ = snap->notices.size();
     }
     const auto fb = win_->framebuffer_size();
     if (fb != last_fb_) need_redraw_ = true;
@@ -442,7 +478,7 @@ class WindowApp {
       cam.width = fb.first;
       cam.height = fb.second;
       const auto t_present = Clock::now();
-      if (auto st = win_->present(ps::app::session_scene(snap->state, worker_->input(), cam, live_, snap->extrusion_plane)); !st)
+      if (auto st = win_->present(ps::app::session_scene(snap->state, worker_->input(), cam, live_, snap->extrusion_plane, &guides(snap))); !st)
         std::cerr << "planesketch: " << st.message() << "\n";
       const auto t_done = Clock::now();
       present_ms_.push_back(ms_between(t_present, t_done));
@@ -516,11 +552,11 @@ class WindowApp {
     const auto& st = shown_->state;
     ImGui::Text("%zu sections, %zu faces%s", st.sections.curves.size(), st.model.faces.size(),
                 worker_->caught_up() ? "" : ", rebuilding");
-    // The last refusal (every one is also on stderr): a stroke that left the model unchanged
-    // says why here, e.g. a sculpting stroke that misses the model.
-    if (!shown_->messages.empty()) {
-      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);
-      ImGui::TextColored(ImVec4(0.85f, 0.30f, 0.20f, 1.0f), "last refusal: %s", shown_->messages.back().text.c_str());
+    if (!last_message_.first.empty()) {
+      ImGui::Separator();
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
+      const ImVec4 color = last_message_.second ? ImVec4(0.95f, 0.35f, 0.30f, 1.0f) : ImVec4(0.95f, 0.80f, 0.35f, 1.0f);
+      ImGui::TextColored(color, "%s", last_message_.first.c_str());
       ImGui::PopTextWrapPos();
     }
     ImGui::End();
@@ -541,6 +577,23 @@ class WindowApp {
     return std::nullopt;
   }
 
+  // The sketching guides of the selected plane over `snap`, recomputed only when the snapshot,
+  // the selected plane or the mode changed (slicing the model is not a per-frame cost).
+  const ps::app::SketchGuides& guides(const std::shared_ptr<const ps::app::PreviewSnapshot>& snap) {
+    const ps::InputState& in = worker_->input();
+    const auto plane = in.current_plane();
+    const auto key = std::make_tuple(snap.get(), in.mode, plane ? plane->normal : ps::Vec3::Zero(), plane ? plane->offset : 0.0,
+                                     plane.has_value());
+    if (!guides_key_ || *guides_key_ != key) {
+      const auto t0 = Clock::now();
+      guides_ = ps::app::sketch_guides(snap->state, in);
+      guides_ms_.push_back(ms_between(t0, Clock::now()));
+      guides_key_ = key;
+      guides_snap_ = snap;  // keeps the keyed snapshot alive, so its address is not reused
+    }
+    return guides_;
+  }
+
   void screenshot() {
     auto [fw, fh] = win_->framebuffer_size();
     ps::Camera cam = worker_->input().camera;
@@ -552,7 +605,7 @@ class WindowApp {
     auto r = ps::engine::create_offscreen_renderer(ro);
     if (!r) throw ps::app::CommandFailed("screenshot: " + r.message());
     const auto snap = worker_->latest();
-    auto img = (*r)->render(ps::app::session_scene(snap->state, worker_->input(), cam, {}, snap->extrusion_plane));
+    auto img = (*r)->render(ps::app::session_scene(snap->state, worker_->input(), cam, {}, snap->extrusion_plane, &guides(snap)));
     if (!img) throw ps::app::CommandFailed("screenshot: " + img.message());
     if (auto st = ps::engine::write_png(o_.screenshot, *img); !st) throw ps::app::CommandFailed(st.message());
   }
@@ -581,6 +634,7 @@ class WindowApp {
     j["ui_busy_per_frame"] = summary(busy_ms_);
     j["ui_work_per_frame"] = summary(work_ms_);  // busy minus present: input, journal, hand-over, scene
     j["present_ms"] = summary(present_ms_);
+    j["guides_ms"] = summary(guides_ms_);  // crossing points and model section of the selected plane
     j["previews_published"] = worker_->published();
     j["previews_superseded"] = worker_->superseded();
     std::ofstream f(o_.report);
@@ -596,9 +650,16 @@ class WindowApp {
   std::shared_ptr<const ps::app::PreviewSnapshot> shown_;
   std::optional<ps::StrokeRecorder> recorder_;
   std::optional<ps::StrokeLog> replayed_;
+  std::vector<ps::TimedEvent> startup_opens_;  // files opened before the journal, journaled first
   ps::StrokeGrouper grouper_;
   std::vector<ps::Vec3> live_;
-  std::size_t seen_messages_ = 0;
+  std::size_t seen_messages_ = 0, seen_notices_ = 0;
+  std::pair<std::string, bool> last_message_;  // newest refusal (true) or notice (false), for the panel
+  // === Sketching guides of the selected plane (cached per snapshot, plane and mode)
+  ps::app::SketchGuides guides_;
+  std::optional<std::tuple<const ps::app::PreviewSnapshot*, std::string, ps::Vec3, double, bool>> guides_key_;
+  std::shared_ptr<const ps::app::PreviewSnapshot> guides_snap_;
+  std::vector<double> guides_ms_;
   std::map<int, bool> keys_;
   bool left_was_down_ = false, right_was_down_ = false, eraser_ = false;
   double last_x_ = 0, last_y_ = 0;

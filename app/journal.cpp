@@ -104,4 +104,34 @@ void JournalingSink::on_action(const TimedEvent& event) {
   next_.on_action(event);
 }
 
+Result<std::string> file_digest(const std::string& path) {
+  using R = Result<std::string>;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) return R::error(path + ": is a directory, not a file");
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return R::error(path + ": cannot be read");
+  std::uint64_t h = 14695981039346656037ull;  // FNV-1a 64
+  char buf[1 << 16];
+  while (f) {
+    f.read(buf, sizeof buf);
+    for (std::streamsize i = 0; i < f.gcount(); ++i) {
+      h ^= static_cast<unsigned char>(buf[i]);
+      h *= 1099511628211ull;
+    }
+  }
+  if (f.bad()) return R::error(path + ": read error");
+  static const char* const hex = "0123456789abcdef";
+  std::string out(16, '0');
+  for (int k = 15; k >= 0; --k, h >>= 4) out[static_cast<std::size_t>(k)] = hex[h & 0xf];
+  return out;
+}
+
+Result<OpenFile> open_file_event(const std::string& kind, const std::string& path) {
+  auto digest = file_digest(path);
+  if (!digest) return digest.status();
+  std::error_code ec;
+  const fs::path abs = fs::absolute(path, ec);
+  return OpenFile{kind, ec ? path : abs.lexically_normal().string(), *digest};
+}
+
 }  // namespace ps::app

@@ -37,6 +37,12 @@ bool journal_in_use(const std::filesystem::path& path);
 // The newest journal in `dir` that is neither finished nor in use.
 std::optional<JournalInfo> newest_unfinished_journal(const std::filesystem::path& dir);
 
+// FNV-1a 64 of the file's bytes as 16 lower-case hex digits (the `digest` of an `open`
+// event, docs/stroke-log.md); refused, naming the file, when it cannot be read.
+Result<std::string> file_digest(const std::string& path);
+// The `open` event for opening `path` as `kind` ("session" or "mesh"): absolute path, digest.
+Result<OpenFile> open_file_event(const std::string& kind, const std::string& path);
+
 // An EventSink that journals every event through a StrokeRecorder before passing it on to
 // `next`: the headless counterpart of the window's journal (same recorder, so the same fsync
 // points: every pen-up and every action). A failed write throws CommandFailed: a journal that

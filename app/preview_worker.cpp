@@ -11,7 +11,7 @@ namespace {
 bool action_changes_model(const Event& e) {
   if (const auto* p = std::get_if<SetParameter>(&e)) return p->name == "extrude_spin" || p->name == "extrude_tilt";
   return std::holds_alternative<Undo>(e) || std::holds_alternative<Redo>(e) ||
-         std::holds_alternative<DeleteSection>(e);
+         std::holds_alternative<DeleteSection>(e) || std::holds_alternative<OpenFile>(e);
 }
 
 }  // namespace
@@ -133,6 +133,7 @@ std::shared_ptr<const PreviewSnapshot> PreviewWorker::snapshot() const {
   auto s = std::make_shared<PreviewSnapshot>();
   s->state = driver_.session().state();
   s->messages = driver_.messages();
+  s->notices = driver_.notices();
   s->events_applied = applied_;
   s->strokes_applied = strokes_applied_;
   s->rebuild_ms = driver_.stroke_latencies_ms();

@@ -65,6 +65,7 @@ namespace ps::app {
 struct PreviewSnapshot {
   SessionState state;
   std::vector<DriverMessage> messages;  // every message so far, in order
+  std::vector<DriverMessage> notices;   // every notice so far (SessionDriver::notices)
   std::size_t events_applied = 0;       // events applied (header, samples, actions, strokes)
   std::size_t strokes_applied = 0;      // of them, strokes (on_stroke calls)
   std::vector<double> rebuild_ms;       // the driver's pen-up to rebuilt model times so far

@@ -60,11 +60,17 @@ void run_replay(const StrokeLog& log, const std::string& name, const ReplayOptio
   params.improve = !o.no_improve;
   SessionDriver driver(params);
   // The session's start: an imported mesh or a saved session (refused: nothing is replayed).
-  if (!o.base_mesh.empty())
+  // A journal records it first, as the `open` event recovery replays.
+  std::optional<Result<OpenFile>> opened;
+  if (!o.base_mesh.empty()) {
     if (auto st = driver.import_mesh(0.0, o.base_mesh); !st) throw CommandFailed(st.message());
+    opened = open_file_event("mesh", o.base_mesh);
+  }
   // (A loaded session brings its own parameters, --no-improve included.)
-  if (!o.start_session.empty())
+  if (!o.start_session.empty()) {
     if (auto st = driver.load_session(0.0, o.start_session); !st) throw CommandFailed(st.message());
+    opened = open_file_event("session", o.start_session);
+  }
 
   // Pacing only decides when events arrive (docs/stroke-log.md, "Replay").
   StrokeReplayer::PaceFn pace;
@@ -76,6 +82,10 @@ void run_replay(const StrokeLog& log, const std::string& name, const ReplayOptio
     // The journal continues the replayed log: same header, the events as they are applied.
     auto rec = StrokeRecorder::open(o.journal, log.header);
     if (!rec) throw CommandFailed("cannot open the journal: " + rec.message());
+    if (opened) {
+      if (!*opened) throw CommandFailed("cannot journal the opened file: " + opened->message());
+      if (auto st = rec->record(0.0, **opened); !st) throw CommandFailed("cannot write the journal: " + st.message());
+    }
     JournalingSink sink(*rec, driver);
     replay_all_paced(log, sink, pace);
     if (auto st = rec->finish(log.events.empty() ? 0.0 : log.events.back().t); !st)
@@ -86,6 +96,9 @@ void run_replay(const StrokeLog& log, const std::string& name, const ReplayOptio
 
   for (const auto& m : driver.messages())
     std::cerr << "planesketch: " << name << ": t=" << m.t << " ms: " << m.text << "\n";
+  if (!o.quiet)
+    for (const auto& m : driver.notices())
+      std::cerr << "planesketch: " << name << ": t=" << m.t << " ms: note: " << m.text << "\n";
   const auto& st = driver.session().state();
   if (!o.quiet)
     std::cerr << "planesketch: replayed " << log.events.size() << " events: " << st.sections.curves.size()
@@ -123,6 +136,8 @@ void run_replay(const StrokeLog& log, const std::string& name, const ReplayOptio
     j["refused"] = nlohmann::json::array();
     for (const auto& m : driver.messages()) j["refused"].push_back({{"t", m.t}, {"message", m.text}});
     j["hints"] = st.hints;
+    j["notices"] = nlohmann::json::array();
+    for (const auto& m : driver.notices()) j["notices"].push_back({{"t", m.t}, {"message", m.text}});
     j["stroke_latency_ms"] = driver.stroke_latencies_ms();
     for (const auto& [k, v] : report_extra.items()) j[k] = v;
     report_text = j.dump(2) + "\n";

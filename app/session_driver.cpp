@@ -5,6 +5,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "app/journal.h"
 #include "modeling/mesh_io.h"
 #include "modeling/sculpt_cut.h"
 #include "modeling/sculpt_extrude.h"
@@ -78,6 +79,8 @@ void SessionDriver::on_action(const TimedEvent& e) {
           if (auto st = input_.apply(e.event); !st) report(e.t, e.line, st.message());
         } else if constexpr (std::is_same_v<T, Save>) {
           if (on_save) on_save(a.path);
+        } else if constexpr (std::is_same_v<T, OpenFile>) {
+          (void)open_file(e.t, e.line, a);
         } else if constexpr (std::is_same_v<T, PenSample>) {
           on_pen_sample(a);
         } else if constexpr (std::is_same_v<T, SetToolMode>) {
@@ -127,6 +130,20 @@ Status SessionDriver::import_mesh(double t, const std::string& path) {
   drop_pending();
   changed();
   return Status::ok();
+}
+
+Status SessionDriver::open_file(double t, int line, const OpenFile& file) {
+  const std::string refused = file.kind == "mesh" ? "mesh not imported: " : "session not loaded: ";
+  auto digest = file_digest(file.path);
+  Status st = digest ? Status::ok() : digest.status();
+  if (digest && *digest != file.digest)
+    st = Status::error(file.path + ": the file changed since the session opened it (digest " + file.digest + " then, " +
+                       *digest + " now): it would not give the same model");
+  if (!st) {
+    report(t, line, refused + st.message());
+    return Status::error(refused + st.message());
+  }
+  return file.kind == "mesh" ? import_mesh(t, file.path) : load_session(t, file.path);
 }
 
 void SessionDriver::on_stroke(const Stroke& stroke) {
@@ -183,11 +200,23 @@ void SessionDriver::on_stroke(const Stroke& stroke) {
     return;
   }
   const auto t0 = std::chrono::steady_clock::now();
-  if (auto st = session_.add_window_stroke(pts, input_.camera, *plane); !st) {
+  StrokeEdit edit;
+  if (auto st = session_.add_window_stroke(pts, input_.camera, *plane, &edit); !st) {
     report(t, 0, "stroke refused: " + st.message());
     return;
   }
   latencies_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  const std::string section = "section " + std::to_string(edit.section);
+  if (edit.kind == StrokeEdit::Kind::kOversketch)
+    notices_.push_back(DriverMessage{t, 0, "the stroke oversketched " + section + " (the part it runs along was replaced)"});
+  if (edit.kind == StrokeEdit::Kind::kCompletion)
+    notices_.push_back(DriverMessage{t, 0, "the stroke was completed from the model's cross section into " + section});
+  if (edit.kind == StrokeEdit::Kind::kMirrored)
+    notices_.push_back(DriverMessage{t, 0, "the open stroke was closed by its mirror image about the line between its ends: " + section});
+  if (edit.parts_after > edit.parts_before && edit.parts_before > 0)
+    notices_.push_back(DriverMessage{t, 0, section + " makes a separate part: the model now has " +
+                                               std::to_string(edit.parts_after) +
+                                               " parts (a section through the marked crossing points joins them)"});
   changed();
 }
 

@@ -35,6 +35,11 @@ class SessionDriver : public EventSink {
   const Camera& initial_camera() const { return initial_camera_; }
   // Refused strokes and actions, in order (the model was left unchanged for each).
   const std::vector<DriverMessage>& messages() const { return messages_; }
+  // Accepted sketch strokes that deserve a word, in order: an open stroke that oversketched a
+  // section, was completed from the model's cross section or was mirrored about its chord,
+  // and a section that made a new separate part of the model (thesis 4.4: "a hint will be
+  // given to the user").
+  const std::vector<DriverMessage>& notices() const { return notices_; }
   // Wall time from pen-up to the rebuilt model, per accepted sketch stroke (ms).
   const std::vector<double>& stroke_latencies_ms() const { return latencies_; }
   // The automatic reference plane of an extrusion whose base stroke waits for its silhouette,
@@ -53,6 +58,10 @@ class SessionDriver : public EventSink {
   // reported as a message too.
   Status load_session(double t, const std::string& path);
   Status import_mesh(double t, const std::string& path);
+  // A journaled `open` event (also what on_action does with one): the file is loaded or
+  // imported as above only when its content still has the event's digest; otherwise it is
+  // refused with a message (the journal would rebuild a different model from it).
+  Status open_file(double t, int line, const OpenFile& file);
 
  private:
   void report(double t, int line, const std::string& text);
@@ -71,6 +80,7 @@ class SessionDriver : public EventSink {
   InputState input_;
   Camera initial_camera_;
   std::vector<DriverMessage> messages_;
+  std::vector<DriverMessage> notices_;
   std::vector<double> latencies_;
   std::vector<Vec2> pending_cut_;  // a cutting stroke waiting for the stroke that marks the side
   std::vector<Vec2> pending_base_;  // an extrusion's base stroke waiting for its silhouette

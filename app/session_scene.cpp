@@ -39,9 +39,81 @@ engine::Scene session_scene(const SessionDriver& d, const Camera& camera,
   return session_scene(d.session().state(), d.input(), camera, stroke_in_progress, d.pending_extrusion_plane());
 }
 
+SketchGuides sketch_guides(const SessionState& state, const InputState& input) {
+  SketchGuides g;
+  const auto plane = input.current_plane();
+  if (input.mode != "sketch" || !plane || !state.base.empty()) return g;
+  g.crossings = crossing_hints(state.sewn, *plane);
+  if (auto loops = model_section(state.model, *plane)) g.model_section = std::move(*loops);
+  return g;
+}
+
+namespace {
+
+// The size of one window pixel at `p` (world units, in a plane facing the camera).
+double pixel_size(const Camera& cam, const Vec3& p) {
+  const double h = cam.orthographic ? cam.ortho_height
+                                    : 2.0 * std::max((p - cam.eye).dot((cam.target - cam.eye).normalized()), cam.near_plane) *
+                                          std::tan(0.5 * cam.fov_y_deg * M_PI / 180.0);
+  return h / static_cast<double>(cam.height);
+}
+
+// `p` moved along its viewing ray to half the camera's distance to its target: the same place
+// on screen, in front of the model. The guides are drawn there, over everything: a crossing
+// the new curve must pass is a hint on the plane even where the model hides that point.
+Vec3 in_front(const Camera& cam, const Vec3& p) {
+  const Vec3 f = (cam.target - cam.eye).normalized();
+  const double depth = (p - cam.eye).dot(f);
+  const double front = std::max(0.5 * (cam.target - cam.eye).norm(), 2.0 * cam.near_plane);
+  if (!(depth > front)) return p;  // already in front (or behind the eye: left to the clipper)
+  if (cam.orthographic) return p - (depth - front) * f;
+  return cam.eye + (p - cam.eye) * (front / depth);
+}
+
+// A ring of `radius_px` pixels (ribbon `width_px` wide) about `p`'s place on screen, facing
+// the camera, in front of the model.
+engine::StrokeVisual ring(const Camera& cam, const Vec3& p, double radius_px, float width_px, engine::Rgba color) {
+  const Vec3 f = (cam.target - cam.eye).normalized();
+  const Vec3 s = f.cross(cam.up).normalized(), u = s.cross(f);
+  const Vec3 q = in_front(cam, p);
+  const double r = radius_px * pixel_size(cam, q);
+  engine::StrokeVisual sv;
+  for (int i = 0; i < 16; ++i) {
+    const double a = 2.0 * M_PI * i / 16.0;
+    sv.points.push_back(q + r * (std::cos(a) * s + std::sin(a) * u));
+  }
+  sv.closed = true;
+  sv.color = color;
+  sv.width_px = width_px;
+  return sv;
+}
+
+void add_guides(engine::Scene& scene, const SketchGuides& g, const Camera& cam, engine::Rgba plane_color) {
+  using engine::Rgba;
+  for (const auto& loop : g.model_section) {
+    engine::StrokeVisual sv;
+    for (const Vec3& p : loop) sv.points.push_back(in_front(cam, p));
+    sv.closed = true;
+    // The selected plane's hue, darkened, half transparent: a reference, not a section.
+    sv.color = Rgba{0.6f * plane_color.r, 0.6f * plane_color.g, 0.6f * plane_color.b, 0.5f};
+    sv.width_px = 5.0f;
+    scene.strokes.push_back(std::move(sv));
+  }
+  for (const auto& h : g.crossings) {
+    if (h.met) {
+      scene.strokes.push_back(ring(cam, h.point, 4.0, 2.0f, Rgba{0.85f, 0.10f, 0.75f, 0.45f}));
+    } else {
+      scene.strokes.push_back(ring(cam, h.point, 6.0, 2.5f, Rgba{0.85f, 0.10f, 0.75f, 1.0f}));
+      scene.strokes.push_back(ring(cam, h.point, 1.0, 3.0f, Rgba{0.85f, 0.10f, 0.75f, 1.0f}));  // the centre dot
+    }
+  }
+}
+
+}  // namespace
+
 engine::Scene session_scene(const SessionState& st, const InputState& input, const Camera& camera,
                             const std::vector<Vec3>& stroke_in_progress,
-                            const std::optional<ExtrudePlane>& extrusion_plane) {
+                            const std::optional<ExtrudePlane>& extrusion_plane, const SketchGuides* guides) {
   using namespace ps::engine;
   Scene scene;
   scene.camera = camera;
@@ -59,6 +131,7 @@ engine::Scene session_scene(const SessionState& st, const InputState& input, con
     const int axis = planes[i].axis();
     pv.color = colors[axis >= 0 ? axis : static_cast<int>(i % 3)];
     pv.selected = static_cast<int>(i) == input.selected_plane;
+    if (pv.selected && guides) add_guides(scene, *guides, camera, pv.color);
     scene.planes.push_back(pv);
   }
   for (const auto& cs : st.sewn.curves) {

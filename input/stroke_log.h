@@ -78,9 +78,18 @@ struct DeleteSection {
 struct Save {
   std::string path;
 };
+// A file opened into the session: a saved session, which replaces it (`kind` "session"), or a
+// mesh made its base ("mesh"). `digest` is the file's content as opened (FNV-1a 64 of its
+// bytes, 16 lower-case hex digits), so a replay can tell that the file changed since and
+// refuse to open a different one; `path` is absolute.
+struct OpenFile {
+  std::string kind;
+  std::string path;
+  std::string digest;
+};
 
 using Event = std::variant<PenSample, SelectPlane, TranslatePlane, CameraChange, SetToolMode,
-                           SetParameter, Undo, Redo, DeleteSection, Save>;
+                           SetParameter, Undo, Redo, DeleteSection, Save, OpenFile>;
 
 struct TimedEvent {
   double t = 0.0;  // ms; for a PenSample equal to sample.t

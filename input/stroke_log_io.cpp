@@ -37,9 +37,10 @@ std::string_view event_type_name(const Event& e) {
         else if constexpr (std::is_same_v<T, Undo>) return "undo";
         else if constexpr (std::is_same_v<T, Redo>) return "redo";
         else if constexpr (std::is_same_v<T, DeleteSection>) return "delete";
+        else if constexpr (std::is_same_v<T, Save>) return "save";
         else {
-          static_assert(std::is_same_v<T, Save>, "unhandled event type");
-          return "save";
+          static_assert(std::is_same_v<T, OpenFile>, "unhandled event type");
+          return "open";
         }
       },
       e);
@@ -177,6 +178,12 @@ Status check_event(const TimedEvent& e) {
           if (v.section < 0) return Status::error("section index must be >= 0");
         } else if constexpr (std::is_same_v<T, Save>) {
           if (v.path.empty()) return Status::error("field 'path' is empty");
+        } else if constexpr (std::is_same_v<T, OpenFile>) {
+          if (v.kind != "session" && v.kind != "mesh")
+            return Status::error("field 'kind' must be \"session\" or \"mesh\" (found \"" + v.kind + "\")");
+          if (v.path.empty()) return Status::error("field 'path' is empty");
+          if (v.digest.size() != 16 || v.digest.find_first_not_of("0123456789abcdef") != std::string::npos)
+            return Status::error("field 'digest' must be 16 lower-case hex digits");
         }
         return Status::ok();
       },
@@ -262,6 +269,10 @@ Result<std::string> format_event(const TimedEvent& e) {
           j["section"] = v.section;
         } else if constexpr (std::is_same_v<T, Save>) {
           j["path"] = v.path;
+        } else if constexpr (std::is_same_v<T, OpenFile>) {
+          j["kind"] = v.kind;
+          j["path"] = v.path;
+          j["digest"] = v.digest;
         }
       },
       e.event);
@@ -534,6 +545,12 @@ std::string parse_event(const json& j, TimedEvent& out, std::string& unknown, bo
   } else if (type == "save") {
     Save a;
     PS_TRY(o.string("path", a.path));
+    out.event = a;
+  } else if (type == "open") {
+    OpenFile a;
+    PS_TRY(o.string("kind", a.kind));
+    PS_TRY(o.string("path", a.path));
+    PS_TRY(o.string("digest", a.digest));
     out.event = a;
   } else if (type == "end") {
     end = true;

@@ -11,9 +11,13 @@
 #include "modeling/face_intersections.h"
 #include "modeling/mesh_improve.h"
 #include "modeling/mesh_queries.h"
+#include "modeling/mesh_topology.h"
 #include "modeling/sculpt_cut.h"
 #include "modeling/sculpt_extrude.h"
 #include "modeling/sculpt_smooth.h"
+#include "modeling/section_oversketch.h"
+#include "modeling/section_validate.h"
+#include "modeling/sketch_guides.h"
 
 namespace ps {
 namespace {
@@ -21,20 +25,16 @@ namespace {
 // Index of `plane` in `set.planes`, adding it when no plane there coincides with it
 // (same unit normal up to sign and same offset, within 1e-12 relative).
 int find_or_add_plane(SectionSet& set, const Plane& plane) {
-  Plane p = plane;
-  const double n = p.normal.norm();
-  p.normal /= n;
-  p.offset /= n;
-  for (std::size_t i = 0; i < set.planes.size(); ++i) {
-    const Plane& q = set.planes[i];
-    const double scale = 1.0 + std::abs(q.offset) + std::abs(p.offset);
-    if ((q.normal - p.normal).norm() < 1e-12 && std::abs(q.offset - p.offset) < 1e-12 * scale)
-      return static_cast<int>(i);
-    if ((q.normal + p.normal).norm() < 1e-12 && std::abs(q.offset + p.offset) < 1e-12 * scale)
-      return static_cast<int>(i);
-  }
-  set.planes.push_back(p);
+  if (const int i = find_plane(set, plane); i >= 0) return i;
+  const double n = plane.normal.norm();
+  set.planes.push_back(Plane{plane.normal / n, plane.offset / n});
   return static_cast<int>(set.planes.size() - 1);
+}
+
+// Connected parts (face components) of a model; 0 for none.
+int model_parts(const TriMesh& model) {
+  std::vector<int> component;
+  return model.faces.empty() ? 0 : face_components(model, component);
 }
 
 // Drop planes no curve uses, re-indexing the curves.
@@ -358,13 +358,115 @@ void SketchSession::push(SessionState next) {
 }
 
 Status SketchSession::add_window_stroke(const std::vector<Vec2>& window_points,
-                                        const Camera& camera, const Plane& plane) {
+                                        const Camera& camera, const Plane& plane, StrokeEdit* edit) {
   if (!state_.base.empty()) return Status::error(kImportedNoSections);
   auto lifted = prepare_plane_stroke(window_points, camera, plane, params_.stroke);
   if (!lifted) return lifted.status();
-  if (!lifted->closed)
-    return Status::error("the stroke is open: a cross section must be a closed curve (end where you began)");
-  return add_section(plane, lifted->points);
+  StrokeEdit e;
+  e.parts_before = model_parts(state_.model);
+  if (lifted->closed) {
+    if (auto st = add_section(plane, lifted->points); !st) return st;
+    e.section = static_cast<int>(state_.sections.curves.size()) - 1;
+  } else if (auto st = edit_by_open_stroke(lifted->window_points, lifted->points, camera, plane, e); !st) {
+    return st;
+  }
+  e.parts_after = model_parts(state_.model);
+  if (edit) *edit = e;
+  return Status::ok();
+}
+
+Status SketchSession::edit_by_open_stroke(const std::vector<Vec2>& window_points, const std::vector<Vec3>& points,
+                                          const Camera& camera, const Plane& plane, StrokeEdit& edit) {
+  std::ostringstream why;
+  why << "the stroke is open: a cross section must be a closed curve (end where you began); an open stroke edits a "
+         "section only when both its ends come within "
+      << params_.oversketch_snap_px << " px of a section on this plane or of the model's outline on it";
+  if (!(plane.normal.norm() > 0.0) || !std::isfinite(plane.offset))
+    return Status::error("the plane is degenerate (zero normal or non-finite offset)");
+  // The plane of the session's set when it holds curves (its frame is theirs), else this one.
+  const int on = find_plane(state_.sections, plane);
+  const Plane pl = on >= 0 ? state_.sections.planes[static_cast<std::size_t>(on)]
+                           : Plane{plane.normal / plane.normal.norm(), plane.offset / plane.normal.norm()};
+  const PlaneFrame frame = plane_frame(pl);
+  // The snapping distance on the plane: the pixels at the stroke's ends lifted onto it.
+  double pixel = 0.0;
+  for (const Vec2& w : {window_points.front(), window_points.back()}) {
+    const auto a = camera.lift(w.x(), w.y(), pl), b = camera.lift(w.x() + 1.0, w.y(), pl),
+               c = camera.lift(w.x(), w.y() + 1.0, pl);
+    if (!a || !b || !c) return Status::error(why.str());
+    pixel = std::max({pixel, (*b - *a).norm(), (*c - *a).norm()});
+  }
+  const double snap = params_.oversketch_snap_px * pixel;
+  std::vector<Vec2> stroke;
+  for (const Vec3& p : points) stroke.push_back(frame.to_2d(p));
+  // The closed curve of `curves` both ends of the stroke come nearest to (within `snap`), in 2D.
+  const auto nearest_curve = [&](const std::vector<const std::vector<Vec3>*>& curves, std::vector<Vec2>& best_2d) {
+    int best = -1;
+    double best_d = snap;
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+      std::vector<Vec2> c;
+      for (const Vec3& p : *curves[i]) c.push_back(frame.to_2d(p));
+      if (c.size() < 3) continue;
+      const double d = std::max(nearest_on_closed(c, stroke.front()).distance, nearest_on_closed(c, stroke.back()).distance);
+      if (d <= best_d) {
+        best_d = d;
+        best = static_cast<int>(i);
+        best_2d = std::move(c);
+      }
+    }
+    return best;
+  };
+  const auto to_3d = [&](const std::vector<Vec2>& q) {
+    std::vector<Vec3> out;
+    for (const Vec2& p : q) out.push_back(pl.project(frame.to_3d(p)));
+    return out;
+  };
+  // === Oversketch: a section the user drew on this plane.
+  std::vector<const std::vector<Vec3>*> own;
+  std::vector<int> own_index;
+  for (std::size_t i = 0; i < state_.sections.curves.size(); ++i)
+    if (on >= 0 && state_.sections.curves[i].plane == on) {
+      own.push_back(&state_.sections.curves[i].points);
+      own_index.push_back(static_cast<int>(i));
+    }
+  std::vector<Vec2> curve;
+  if (const int k = nearest_curve(own, curve); k >= 0) {
+    const int index = own_index[static_cast<std::size_t>(k)];
+    const std::string what = "oversketch of section " + std::to_string(index) + ": ";
+    auto spliced = splice_open_stroke(curve, stroke, snap);
+    if (!spliced) return Status::error(what + spliced.message());
+    SessionState next = state_;
+    next.sections.curves[static_cast<std::size_t>(index)].points = to_3d(spliced->curve);
+    if (auto st = commit(std::move(next)); !st) return Status::error(what + st.message());
+    edit.kind = StrokeEdit::Kind::kOversketch;
+    edit.section = index;
+    return Status::ok();
+  }
+  // === Completion: a curve of the model's own cross section by the plane.
+  if (!state_.model.faces.empty()) {
+    auto loops = model_section(state_.model, pl);
+    if (!loops) return Status::error(why.str() + " (" + loops.message() + ")");
+    std::vector<const std::vector<Vec3>*> computed;
+    for (const auto& l : *loops) computed.push_back(&l);
+    if (nearest_curve(computed, curve) >= 0) {
+      auto spliced = splice_open_stroke(curve, stroke, snap);
+      if (!spliced) return Status::error("completing the stroke from the model's cross section: " + spliced.message());
+      if (auto st = add_section(pl, to_3d(spliced->curve)); !st)
+        return Status::error("the completed stroke: " + st.message());
+      edit.kind = StrokeEdit::Kind::kCompletion;
+      edit.section = static_cast<int>(state_.sections.curves.size()) - 1;
+      return Status::ok();
+    }
+  }
+  // === Nothing under its ends: a stroke on one side of its chord is closed by its mirror image.
+  if (const auto closed = mirror_about_chord(stroke)) {
+    if (auto st = add_section(pl, to_3d(*closed)); !st) return Status::error("the stroke mirrored about its chord: " + st.message());
+    edit.kind = StrokeEdit::Kind::kMirrored;
+    edit.section = static_cast<int>(state_.sections.curves.size()) - 1;
+    return Status::ok();
+  }
+  why << ", or when it lies on one side of the line between its ends (it is then mirrored about that line)";
+  return Status::error(why.str());
 }
 
 Status SketchSession::add_section(const Plane& plane, const std::vector<Vec3>& points) {

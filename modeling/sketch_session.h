@@ -32,6 +32,22 @@ struct SessionParams {
   // the improvement's exact self-intersection checks would stall the interactive loop.
   std::size_t improve_max_faces = 6000;
   double lambda = 0.5;  // deformation balance (thesis 5.4), recorded with each DeformOp
+  // An open sketch stroke edits a section (modeling/section_oversketch.h) when both its ends
+  // come within this many window pixels of it.
+  double oversketch_snap_px = 20.0;
+};
+
+// What an accepted sketch stroke did (SketchSession::add_window_stroke).
+struct StrokeEdit {
+  enum class Kind {
+    kNewSection,  // a closed stroke: a new section
+    kOversketch,  // an open stroke replaced the part of section `section` it runs along
+    kCompletion,  // an open stroke completed from the model's cross section: new section `section`
+    kMirrored,    // an open stroke with nothing under its ends, closed by its mirror image in its chord
+  };
+  Kind kind = Kind::kNewSection;
+  int section = -1;                       // index of the new or edited section
+  int parts_before = 0, parts_after = 0;  // connected parts of the model before and after
 };
 
 // A sculpting operation by stroke (thesis 3.2.2; modeling/sculpt_cut.h, sculpt_smooth.h), kept
@@ -156,8 +172,15 @@ class SketchSession {
   // A window-space stroke (pixels) drawn under `camera` on `plane`: preprocessed (3.3.1),
   // lifted onto the plane, checked against the stroke rules (3.3.2), sewn (rule 4), then the
   // model is rebuilt. Refused strokes leave everything unchanged.
+  // A closed stroke is a new section. An open stroke (thesis 3.2.1, 4.6) whose two ends come
+  // within `oversketch_snap_px` of a section on the same plane oversketches it: the part it
+  // runs along is replaced, the section keeps its index. Otherwise, when both ends come that
+  // close to one curve of the model's cross section by the plane, the stroke is completed by
+  // the rest of that curve into a new section. Otherwise, when it lies on one side of its
+  // chord, it is closed by its mirror image in the chord (modeling/section_oversketch.h);
+  // otherwise it is refused as open. `edit`, when given, says what an accepted stroke did.
   Status add_window_stroke(const std::vector<Vec2>& window_points, const Camera& camera,
-                           const Plane& plane);
+                           const Plane& plane, StrokeEdit* edit = nullptr);
   // A closed curve given in 3D on `plane` (points are projected onto it).
   Status add_section(const Plane& plane, const std::vector<Vec3>& points);
   Status delete_section(int index);
@@ -201,6 +224,9 @@ class SketchSession {
   Status commit(SessionState next);
   // Pushes the current state on the undo stack and makes `next` current.
   void push(SessionState next);
+  // An open lifted stroke: oversketch or completion (add_window_stroke).
+  Status edit_by_open_stroke(const std::vector<Vec2>& window_points, const std::vector<Vec3>& points,
+                             const Camera& camera, const Plane& plane, StrokeEdit& edit);
 
   SessionParams params_;
   SessionState state_;

@@ -14,60 +14,13 @@
 #include "engine/renderer.h"
 #include "engine/scene.h"
 #include "modeling/mesh_io.h"
+#include "tests/golden_compare.h"
 #include "tests/mesh_fixtures.h"
 
 namespace ps::engine {
 namespace {
 
 namespace fs = std::filesystem;
-
-// === Golden comparison
-
-struct Tolerance {
-  int max_channel_diff;   // a pixel "differs" when a channel differs by more than this
-  double max_fraction;    // fraction of differing pixels allowed
-};
-// lavapipe output is byte-identical run to run; allow one level of rounding noise anywhere
-// and a handful of edge pixels beyond it (a different CPU's LLVM code generation).
-constexpr Tolerance kGoldenTolerance{1, 0.002};
-
-bool update_goldens() {
-  const char* v = std::getenv("PLANESKETCH_UPDATE_GOLDENS");
-  return v && *v && std::string(v) != "0";
-}
-
-::testing::AssertionResult matches_golden(const Image& actual, const std::string& name,
-                                          Tolerance tol) {
-  const fs::path golden = fs::path(PLANESKETCH_SOURCE_DIR) / "tests" / "goldens" / (name + ".png");
-  if (update_goldens()) {
-    if (auto st = write_png(golden.string(), actual); !st)
-      return ::testing::AssertionFailure() << "cannot update golden: " << st.message();
-    return ::testing::AssertionSuccess() << "updated " << golden;
-  }
-  if (!fs::exists(golden))
-    return ::testing::AssertionFailure()
-           << "golden " << golden << " is missing; run scripts/update-goldens";
-  auto expected = read_png(golden.string());
-  if (!expected) return ::testing::AssertionFailure() << expected.message();
-  const ImageDiff d = compare_images(actual, *expected, tol.max_channel_diff);
-  if (d.same_size && d.differing_fraction <= tol.max_fraction) return ::testing::AssertionSuccess();
-  const fs::path out_dir = fs::current_path();
-  (void)write_png((out_dir / (name + ".actual.png")).string(), actual);
-  if (d.same_size)
-    (void)write_png((out_dir / (name + ".diff.png")).string(), difference_image(actual, *expected));
-  auto fail = ::testing::AssertionFailure() << "image '" << name << "' differs from " << golden;
-  if (!d.same_size)
-    return fail << ": size " << actual.width << "x" << actual.height << " vs "
-                << expected->width << "x" << expected->height;
-  return fail << ": " << d.differing_pixels << " pixels (" << 100.0 * d.differing_fraction
-              << "%, allowed " << 100.0 * tol.max_fraction << "%) differ by more than "
-              << tol.max_channel_diff << "; largest channel difference " << d.max_channel_diff
-              << "; see " << (out_dir / (name + ".actual.png")) << " and .diff.png";
-}
-
-// Reports the caller's file and line (gtest's EXPECT_PRED_FORMAT-style macro).
-#define EXPECT_IMAGE_MATCHES_GOLDEN(image, name) \
-  EXPECT_TRUE(matches_golden((image), (name), kGoldenTolerance))
 
 // === Test content (procedural, so the goldens depend on no data files)
 

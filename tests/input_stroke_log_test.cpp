@@ -81,6 +81,7 @@ StrokeLog every_event_log() {
   add(Undo{});
   add(Redo{});
   add(DeleteSection{7});
+  add(OpenFile{"session", "/home/u/ü s.json", "0123456789abcdef"});
   add(Save{"out/model \"quoted\" ü.obj"});
   log.events.push_back(TimedEvent{t - 1.0 / 3.0, 0, Undo{}});  // equal times are allowed
   return log;
@@ -121,6 +122,10 @@ TEST(StrokeLogIo, RoundTripKeepsEveryEventBitForBit) {
   EXPECT_EQ(back->header.camera.target.x(), 1e-300);
   EXPECT_EQ(back->header.planes.size(), 4u);
   EXPECT_EQ(std::get<Save>(back->events[back->events.size() - 2].event).path, "out/model \"quoted\" ü.obj");
+  const auto& opened = std::get<OpenFile>(back->events[back->events.size() - 3].event);
+  EXPECT_EQ(opened.kind, "session");
+  EXPECT_EQ(opened.path, "/home/u/ü s.json");
+  EXPECT_EQ(opened.digest, "0123456789abcdef");
   // Source lines: header is line 1, events follow.
   for (std::size_t i = 0; i < back->events.size(); ++i) EXPECT_EQ(back->events[i].line, static_cast<int>(i) + 2);
   // Writing again gives the same text (a fixed point).
@@ -239,6 +244,11 @@ std::vector<BadCase> bad_cases() {
       {"truncated middle line", h + std::string(kPen).substr(0, 30) + "\n" + p, 2, "bad JSON"},
       {"deep nesting", h + std::string(5000, '[') + std::string(5000, ']') + "\n", 2, "nested deeper"},
       {"invalid utf8", h + "{\"t\":0,\"type\":\"save\",\"path\":\"\xff\xfe\"}\n", 2, "bad JSON"},
+      {"open kind", h + "{\"t\":0,\"type\":\"open\",\"kind\":\"picture\",\"path\":\"/a.png\",\"digest\":\"0123456789abcdef\"}\n", 2,
+       "field 'kind' must be \"session\" or \"mesh\" (found \"picture\")"},
+      {"open digest", h + "{\"t\":0,\"type\":\"open\",\"kind\":\"mesh\",\"path\":\"/a.off\",\"digest\":\"0123456789ABCDEF\"}\n", 2,
+       "field 'digest' must be 16 lower-case hex digits"},
+      {"open no path", h + "{\"t\":0,\"type\":\"open\",\"kind\":\"mesh\",\"digest\":\"0123456789abcdef\"}\n", 2, "missing field 'path'"},
   };
 }
 
