@@ -505,9 +505,10 @@ class WindowApp {
     ImGui::Begin("planesketch", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoFocusOnAppearing);
     ImGui::TextUnformatted("tool");
     // Two rows: sketching and sculpting, then deformation (handle and target strokes), its
-    // region of interest (lasso or brush) and stiffness painting (app/session_driver.h).
+    // region of interest (lasso or brush), stiffness painting and the topology edits of the
+    // reconstruction (join, split; app/session_driver.h).
     static const char* const kModes[] = {"sketch", "sculpt", "cut", "tunnel", "smooth", "extrude",
-                                         "deform", "roi", "stiffness"};
+                                         "deform", "roi", "stiffness", "join", "split"};
     for (std::size_t i = 0; i < std::size(kModes); ++i) {
       const char* m = kModes[i];
       if (ImGui::RadioButton(m, in.mode == m) && in.mode != m) act(panel_t_, ps::SetToolMode{m});

@@ -185,13 +185,22 @@ void SessionDriver::on_stroke(const Stroke& stroke) {
     stiffness_stroke(t, pts);
     return;
   }
+  if (input_.mode == "join" || input_.mode == "split") {
+    // Topology editing (thesis 6.4): a stroke from one part to another, or across a part.
+    const auto kind = input_.mode == "join" ? TopologyEditKind::kJoin : TopologyEditKind::kSplit;
+    if (auto st = session_.topology_edit(kind, pts, input_.camera); !st)
+      report(t, 0, st.message());
+    else
+      changed();
+    return;
+  }
   pending_cut_.clear();
   pending_base_.clear();
   pending_handle_.clear();
   pending_target_.clear();
   if (input_.mode != "sketch") {
     report(t, 0, "stroke in '" + input_.mode +
-                     "' mode ignored: modes are sketch, sculpt, cut, tunnel, smooth, extrude, deform, roi and stiffness");
+                     "' mode ignored: modes are sketch, sculpt, cut, tunnel, smooth, extrude, deform, roi, stiffness, join and split");
     return;
   }
   const auto plane = input_.current_plane();

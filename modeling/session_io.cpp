@@ -366,6 +366,23 @@ SectionSet sections_from(const json& j, const std::string& path) {
   return set;
 }
 
+TopologyEdit edit_from(const json& j, const std::string& path) {
+  const json& o = object(j, path, {"kind", "stroke"});
+  TopologyEdit e;
+  const std::string kind = string(field(o, path, "kind"), path + ".kind");
+  if (kind == "join")
+    e.kind = TopologyEditKind::kJoin;
+  else if (kind == "split")
+    e.kind = TopologyEditKind::kSplit;
+  else
+    throw Bad{path + ".kind", "must be \"join\" or \"split\" (found \"" + kind + "\")"};
+  const std::string sp = path + ".stroke";
+  const json& a = array(field(o, path, "stroke"), sp);
+  if (a.size() < 2) throw Bad{sp, "must have at least 2 points"};
+  for (std::size_t i = 0; i < a.size(); ++i) e.stroke.push_back(vec_n<3>(a[i], at_index(sp, i)));
+  return e;
+}
+
 TriMesh base_from(const json& j, const std::string& path) {
   const json& o = object(j, path, {"vertices", "faces"});
   TriMesh m;
@@ -442,6 +459,16 @@ std::string session_to_json(const SessionParams& params, const SessionState& sta
   json ops = json::array();
   for (const auto& op : state.ops) ops.push_back(op_json(op));
   j["ops"] = std::move(ops);
+  // Written only when there are some: files without topology edits stay as they were.
+  if (!state.edits.empty()) {
+    json edits = json::array();
+    for (const auto& e : state.edits) {
+      json stroke = json::array();
+      for (const auto& p : e.stroke) stroke.push_back(vec(p));
+      edits.push_back({{"kind", topology_edit_name(e.kind)}, {"stroke", std::move(stroke)}});
+    }
+    j["edits"] = std::move(edits);
+  }
   if (mesh_file.empty() || state.model.empty()) {
     j["mesh"] = nullptr;
   } else {
@@ -461,7 +488,7 @@ Result<SessionFile> session_from_json(const std::string& text, const std::string
     return R::error(name + ": not valid JSON (" + what + ")");
   }
   try {
-    const json& o = object(j, "", {"format", "version", "units", "params", "base", "sections", "ops", "mesh"});
+    const json& o = object(j, "", {"format", "version", "units", "params", "base", "sections", "ops", "edits", "mesh"});
     if (string(field(o, "", "format"), "format") != kSessionFormat)
       throw Bad{"format", std::string("must be \"") + kSessionFormat + "\" (found " + field(o, "", "format").dump() + ")"};
     const json& v = field(o, "", "version");
@@ -478,6 +505,12 @@ Result<SessionFile> session_from_json(const std::string& text, const std::string
       throw Bad{"sections.curves", "must be empty when the session has an imported base mesh"};
     const json& ops = array(field(o, "", "ops"), "ops");
     for (std::size_t i = 0; i < ops.size(); ++i) f.state.ops.push_back(op_from(ops[i], at_index("ops", i)));
+    if (o.contains("edits")) {
+      const json& edits = array(o["edits"], "edits");
+      for (std::size_t i = 0; i < edits.size(); ++i) f.state.edits.push_back(edit_from(edits[i], at_index("edits", i)));
+      if (!f.state.edits.empty() && !f.state.base.empty())
+        throw Bad{"edits", "must be empty when the session has an imported base mesh"};
+    }
     if (const json& m = field(o, "", "mesh"); !m.is_null()) {
       const json& mo = object(m, "mesh", {"path", "vertices", "faces"});
       f.mesh = string(field(mo, "mesh", "path"), "mesh.path");

@@ -12,6 +12,7 @@
 #include "modeling/mesh_improve.h"
 #include "modeling/mesh_queries.h"
 #include "modeling/mesh_topology.h"
+#include "modeling/progressive_reconstructor.h"
 #include "modeling/sculpt_cut.h"
 #include "modeling/sculpt_extrude.h"
 #include "modeling/sculpt_smooth.h"
@@ -325,6 +326,26 @@ Status SketchSession::sculpt(const SculptOp& op) {
   return Status::ok();
 }
 
+Status SketchSession::topology_edit(TopologyEditKind kind, const std::vector<Vec2>& window_points,
+                                   const Camera& camera) {
+  const std::string name = topology_edit_name(kind);
+  if (!state_.base.empty()) return Status::error(name + ": an imported mesh has no reconstruction to edit");
+  if (state_.model.empty()) return Status::error(name + ": there is no model yet");
+  for (const auto& p : window_points)
+    if (!p.allFinite()) return Status::error(name + ": the stroke has a NaN or infinite point");
+  const MeshRayCaster caster(state_.model);
+  std::vector<Vec3> hits;
+  for (const auto& p : window_points)
+    if (auto h = caster.first_hit(camera.ray(p.x(), p.y()))) hits.push_back(h->point);
+  if (hits.size() < 2)
+    return Status::error(name + (kind == TopologyEditKind::kJoin ? ": the stroke must start and end on the model"
+                                                                  : ": the stroke must cross the model"));
+  TopologyEdit e{kind, kind == TopologyEditKind::kJoin ? std::vector<Vec3>{hits.front(), hits.back()} : hits};
+  SessionState next = state_;
+  next.edits.push_back(std::move(e));
+  return commit(std::move(next));
+}
+
 Status SketchSession::deform(DeformOp op) {
   op.lambda = params_.lambda;
   auto out = apply_deform(state_.model, state_.stiffness, op);
@@ -576,6 +597,8 @@ Status SketchSession::build(const SessionParams& params, SessionState& next, Rec
     return Status::ok();
   }
   if (next.sections.curves.empty()) {
+    if (!next.edits.empty())
+      return Status::error("the model has topology edits; deleting its last section would lose them (undo them first)");
     if (!next.ops.empty())
       return Status::error("the model has been sculpted; deleting its last section would lose that work (undo the sculpting first)");
     next.sewn = next.sections;
@@ -588,7 +611,8 @@ Status SketchSession::build(const SessionParams& params, SessionState& next, Rec
   if (!sewn) return Status::error("stroke rule 4: " + sewn.message());
   ReconstructOptions ro;
   ro.improve = false;  // improved below, within the interactive budget
-  auto mesh = reconstruct(*sewn, ro, &report);
+  ProgressiveReconstructor reconstructor(ro);
+  auto mesh = reconstructor.update(*sewn, next.edits, &report);
   if (!mesh) return mesh.status();
   if (params.improve) {
     if (mesh->faces.size() <= params.improve_max_faces) {
@@ -667,6 +691,7 @@ Status SketchSession::load(SessionParams params, const SessionState& saved) {
   next.base = saved.base;
   next.sections = saved.sections;
   next.ops = saved.ops;
+  next.edits = saved.edits;
   ReconstructReport report;
   if (auto st = build(params, next, report); !st) return st;
   params_ = std::move(params);

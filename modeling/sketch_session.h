@@ -22,6 +22,7 @@
 #include "modeling/reconstruct.h"
 #include "modeling/status.h"
 #include "modeling/stroke_preprocess.h"
+#include "modeling/topology_edit.h"
 
 namespace ps {
 
@@ -153,6 +154,10 @@ struct SessionState {
   // `sewn`. Editing the sections rebuilds the reconstruction and applies them again; a section
   // edit that makes one of them fail is refused (the sculpted model is never silently lost).
   std::vector<SessionOp> ops;
+  // Topology edits (thesis 6.4, modeling/topology_edit.h) of the reconstruction, before `ops`:
+  // their strokes in model coordinates. A section edit under which one no longer applies is
+  // refused, like an operation.
+  std::vector<TopologyEdit> edits;
   TriMesh model;        // reconstruction of `sewn`, then `ops` (empty when there are no sections)
   // Painted stiffness per vertex of `model` (NaN: not painted, the global lambda applies);
   // empty while nothing is painted. A deformation keeps the vertices, so it keeps the field; a
@@ -190,13 +195,19 @@ class SketchSession {
   // with the operation), or paints stiffness on it. Undoable; refusals change nothing.
   Status deform(DeformOp op);
   Status paint_stiffness(const StiffnessOp& op);
+  // Join (a stroke from one part of the model to another) or split (a stroke across a part) of
+  // the reconstruction (thesis 6.4): the window stroke drawn under `camera` is cast onto the
+  // model (a join keeps the first and last points that hit it, a split every hit) and the edit
+  // rebuilds the model. Refused, naming the reason: an imported base mesh, no model, too few
+  // points on the model, or an edit that does not apply (topology_edit.h). Undoable.
+  Status topology_edit(TopologyEditKind kind, const std::vector<Vec2>& window_points, const Camera& camera);
   // Makes `mesh` the base of an empty session (no sections, no operations, no base yet), to
   // sculpt or deform without sections; undoable. Refused, naming the reason, unless the mesh is
   // closed, manifold, consistently oriented outwards (positive volume) and free of
   // self-intersections (check_guarantees). Afterwards adding or deleting sections is refused.
   Status import_base(TriMesh mesh);
   // Replaces the whole session by `params` and the state given by `saved.base`,
-  // `saved.sections` and `saved.ops` (the other fields are ignored): the model is rebuilt from
+  // `saved.sections`, `saved.edits` and `saved.ops` (the other fields are ignored): the model is rebuilt from
   // them exactly as the session builds it, so the result is the model the saved session had.
   // The undo and redo history is cleared. On a refusal (a section set that does not
   // reconstruct, an operation that no longer applies) the session is left untouched.
