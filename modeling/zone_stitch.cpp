@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <map>
 #include <tuple>
 #include <unordered_map>
@@ -133,20 +134,28 @@ std::uint64_t edge_key(int a, int b) {
 int split_t_junctions(TriMesh& m, double tol) {
   int total = 0;
   for (int pass = 0; pass < 4; ++pass) {
-    std::unordered_map<std::uint64_t, int> count;
-    for (const auto& f : m.faces)
-      for (int i = 0; i < 3; ++i) ++count[edge_key(f[uz(i)], f[uz((i + 1) % 3)])];
-    std::vector<char> boundary_vertex(m.vertices.size(), 0);
-    std::vector<std::array<int, 3>> bedges;  // face, corner i (edge i -> i+1)
+    // Edges used once: sorted (key, 3 * face + corner) pairs, runs of length one.
+    std::vector<std::pair<std::uint64_t, std::size_t>> half;
+    half.reserve(m.faces.size() * 3);
     for (std::size_t fi = 0; fi < m.faces.size(); ++fi)
-      for (int i = 0; i < 3; ++i) {
-        const int a = m.faces[fi][uz(i)], b = m.faces[fi][uz((i + 1) % 3)];
-        if (count[edge_key(a, b)] == 1) {
-          bedges.push_back({static_cast<int>(fi), i, 0});
-          boundary_vertex[uz(a)] = boundary_vertex[uz(b)] = 1;
-        }
+      for (int i = 0; i < 3; ++i)
+        half.emplace_back(edge_key(m.faces[fi][uz(i)], m.faces[fi][uz((i + 1) % 3)]), 3 * fi + uz(i));
+    std::sort(half.begin(), half.end());
+    std::vector<char> boundary_vertex(m.vertices.size(), 0);
+    std::vector<std::array<int, 3>> bedges;  // face, corner i (edge i -> i+1), in face order
+    for (std::size_t i = 0; i < half.size();) {
+      std::size_t j = i + 1;
+      while (j < half.size() && half[j].first == half[i].first) ++j;
+      if (j - i == 1) {
+        const std::size_t fi = half[i].second / 3;
+        const int c = static_cast<int>(half[i].second % 3);
+        bedges.push_back({static_cast<int>(fi), c, 0});
+        boundary_vertex[uz(m.faces[fi][uz(c)])] = boundary_vertex[uz(m.faces[fi][uz((c + 1) % 3)])] = 1;
       }
+      i = j;
+    }
     if (bedges.empty()) break;
+    std::sort(bedges.begin(), bedges.end());
     double mean = 0.0;
     for (const auto& e : bedges) {
       const auto& f = m.faces[uz(e[0])];
@@ -248,16 +257,28 @@ TriMesh apply_merge(const TriMesh& mesh, std::vector<int>& parent) {
 TriMesh weld_vertices(const TriMesh& mesh, double tol) {
   // 1. Identical positions (most of them: shared points are rounded from the same exact value).
   const std::size_t n = mesh.vertices.size();
-  std::vector<int> order(n), parent(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = parent[i] = static_cast<int>(i);
-  auto key = [&](int a) {
-    const Vec3& p = mesh.vertices[uz(a)];
-    return std::make_tuple(p.x(), p.y(), p.z(), a);
-  };
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
-  for (std::size_t a = 1; a < n; ++a)
-    if (mesh.vertices[uz(order[a])] == mesh.vertices[uz(order[a - 1])])
-      parent[uz(order[a])] = parent[uz(order[a - 1])];  // run root: the smallest index
+  std::vector<int> parent(n);
+  //    Hashed on the coordinates' bits (-0 read as +0, which compares equal); the first
+  //    index seen with a position, the smallest, is the root.
+  {
+    struct PointHash {
+      std::size_t operator()(const std::array<std::uint64_t, 3>& b) const {
+        std::uint64_t h = 1469598103934665603ULL;
+        for (std::uint64_t w : b) h = (h ^ w) * 1099511628211ULL ^ (w >> 29);
+        return static_cast<std::size_t>(h);
+      }
+    };
+    std::unordered_map<std::array<std::uint64_t, 3>, int, PointHash> first;
+    first.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::array<std::uint64_t, 3> bits{};
+      for (int c = 0; c < 3; ++c) {
+        const double x = mesh.vertices[i][c] + 0.0;
+        std::memcpy(&bits[uz(c)], &x, sizeof x);
+      }
+      parent[i] = first.emplace(bits, static_cast<int>(i)).first->second;
+    }
+  }
   TriMesh exact = apply_merge(mesh, parent);
 
   // 2. Near positions, only among vertices of boundary edges (where sides failed to meet):
@@ -314,28 +335,33 @@ bool repair_close_vertices(TriMesh& m, double tol) {
   // Grid hash with cells of size tol: a vertex within tol of another lies in a neighbouring
   // cell. (A sweep along one axis is quadratic here: thousands of vertices share the
   // coordinate of a zone face.)
+  //    Cells sorted lexicographically; the neighbours of a cell are found by binary search on
+  //    its 9 neighbouring (x, y) columns (no hash map of 20k small vectors).
   if (!(tol > 0)) return true;
-  std::unordered_map<CellKey, std::vector<int>, CellHash> grid;
-  grid.reserve(n);
-  for (std::size_t v = 0; v < n; ++v) grid[cell_of(m.vertices[v], tol)].push_back(static_cast<int>(v));
+  std::vector<std::pair<std::array<std::int64_t, 3>, int>> cells(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    const CellKey c = cell_of(m.vertices[v], tol);
+    cells[v] = {{c.x, c.y, c.z}, static_cast<int>(v)};
+  }
+  std::sort(cells.begin(), cells.end());
   std::vector<char> close(n, 0);
   bool any = false;
   for (std::size_t v = 0; v < n; ++v) {
     const Vec3& p = m.vertices[v];
     const CellKey c = cell_of(p, tol);
     for (std::int64_t dx = -1; dx <= 1; ++dx)
-      for (std::int64_t dy = -1; dy <= 1; ++dy)
-        for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          const auto it = grid.find({c.x + dx, c.y + dy, c.z + dz});
-          if (it == grid.end()) continue;
-          for (int w : it->second) {
-            if (uz(w) <= v || (m.vertices[uz(w)] - p).norm() > tol) continue;
-            close[v] = close[uz(w)] = 1;
-            const int ra = find(static_cast<int>(v)), rb = find(w);
-            if (ra != rb) parent[uz(std::max(ra, rb))] = std::min(ra, rb);
-            any = true;
-          }
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        const std::pair<std::array<std::int64_t, 3>, int> lo{{c.x + dx, c.y + dy, c.z - 1}, -1};
+        const std::array<std::int64_t, 3> hi{c.x + dx, c.y + dy, c.z + 1};
+        for (auto it = std::lower_bound(cells.begin(), cells.end(), lo); it != cells.end() && it->first <= hi; ++it) {
+          const int w = it->second;
+          if (uz(w) <= v || (m.vertices[uz(w)] - p).norm() > tol) continue;
+          close[v] = close[uz(w)] = 1;
+          const int ra = find(static_cast<int>(v)), rb = find(w);
+          if (ra != rb) parent[uz(std::max(ra, rb))] = std::min(ra, rb);
+          any = true;
         }
+      }
   }
   if (!any) return true;
   auto around = [](const TriMesh& mesh, const std::vector<char>& mark) {
