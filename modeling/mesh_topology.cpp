@@ -43,8 +43,9 @@ double signed_volume(const TriMesh& mesh) {
 
 namespace {
 
-// Undirected edge keys (smaller index first) tagged with their face, sorted: equal keys are
-// adjacent. Sorting a flat vector is several times faster than a hash map of the same edges.
+// Undirected edge keys (smaller index first) tagged with 2 * face + (1 if the face runs from
+// the larger index to the smaller), sorted: equal keys are adjacent. Sorting a flat vector is
+// several times faster than a hash map of the same edges.
 std::vector<std::pair<std::uint64_t, int>> sorted_undirected_edges(const TriMesh& mesh) {
   std::vector<std::pair<std::uint64_t, int>> edges;
   edges.reserve(mesh.faces.size() * 3);
@@ -52,7 +53,7 @@ std::vector<std::pair<std::uint64_t, int>> sorted_undirected_edges(const TriMesh
     const auto& f = mesh.faces[fi];
     for (int k = 0; k < 3; ++k) {
       const int a = f[static_cast<std::size_t>(k)], b = f[static_cast<std::size_t>((k + 1) % 3)];
-      edges.emplace_back(edge_key(std::min(a, b), std::max(a, b)), static_cast<int>(fi));
+      edges.emplace_back(edge_key(std::min(a, b), std::max(a, b)), 2 * static_cast<int>(fi) + (a > b ? 1 : 0));
     }
   }
   std::sort(edges.begin(), edges.end());
@@ -63,7 +64,7 @@ int components_from_edges(std::size_t nf, const std::vector<std::pair<std::uint6
                           std::vector<int>& component_of_face) {
   DisjointSets ds(nf);
   for (std::size_t i = 1; i < edges.size(); ++i)
-    if (edges[i].first == edges[i - 1].first) ds.unite(edges[i].second, edges[i - 1].second);
+    if (edges[i].first == edges[i - 1].first) ds.unite(edges[i].second / 2, edges[i - 1].second / 2);
   // Ids in order of each component's first face (independent of the union-find's roots).
   component_of_face.assign(nf, -1);
   std::vector<int> id_of_root(nf, -1);
@@ -114,23 +115,18 @@ MeshTopology mesh_topology(const TriMesh& mesh) {
   // === Edges: undirected incidence and directed uniqueness (sorted keys, runs counted)
   const auto undirected = sorted_undirected_edges(mesh);
   long distinct_edges = 0;
+  // A directed edge repeats when two half-edges of one undirected edge run the same way.
+  bool dir_ok = true;
   for (std::size_t i = 0; i < undirected.size();) {
     std::size_t j = i + 1;
     while (j < undirected.size() && undirected[j].first == undirected[i].first) ++j;
     ++distinct_edges;
     if (j - i == 1) ++t.boundary_edges;
     if (j - i > 2) ++t.nonmanifold_edges;
+    int ways[2] = {0, 0};
+    for (std::size_t e = i; e < j; ++e) ++ways[undirected[e].second & 1];
+    if (ways[0] > 1 || ways[1] > 1) dir_ok = false;
     i = j;
-  }
-  bool dir_ok = true;
-  {
-    std::vector<std::uint64_t> directed;
-    directed.reserve(nf * 3);
-    for (const auto& f : mesh.faces)
-      for (int k = 0; k < 3; ++k)
-        directed.push_back(edge_key(f[static_cast<std::size_t>(k)], f[static_cast<std::size_t>((k + 1) % 3)]));
-    std::sort(directed.begin(), directed.end());
-    dir_ok = std::adjacent_find(directed.begin(), directed.end()) == directed.end();
   }
   t.closed = t.boundary_edges == 0 && nf > 0;
   t.edge_manifold = t.nonmanifold_edges == 0;
