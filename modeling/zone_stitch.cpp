@@ -254,33 +254,57 @@ TriMesh apply_merge(const TriMesh& mesh, std::vector<int>& parent) {
 
 }  // namespace
 
+namespace {
+
+// Merges bit-identical positions while a mesh is built (-0 counts as +0, which compares
+// equal): vertices are numbered in order of first appearance and faces that collapse are
+// dropped, which is what merging a finished soup with the smallest index as root gives.
+class ExactWelder {
+ public:
+  explicit ExactWelder(std::size_t vertices) { index_.reserve(vertices); }
+  int vertex(const Vec3& p) {
+    std::array<std::uint64_t, 3> bits{};
+    for (int c = 0; c < 3; ++c) {
+      const double x = p[c] + 0.0;
+      std::memcpy(&bits[uz(c)], &x, sizeof x);
+    }
+    const auto [it, inserted] = index_.emplace(bits, static_cast<int>(mesh.vertices.size()));
+    if (inserted) mesh.vertices.push_back(p);
+    return it->second;
+  }
+  void face(int a, int b, int c) {
+    if (a != b && b != c && a != c) mesh.faces.push_back({a, b, c});
+  }
+  void triangle(const std::array<Vec3, 3>& t) { face(vertex(t[0]), vertex(t[1]), vertex(t[2])); }
+  TriMesh mesh;
+
+ private:
+  struct PointHash {
+    std::size_t operator()(const std::array<std::uint64_t, 3>& b) const {
+      std::uint64_t h = 1469598103934665603ULL;
+      for (std::uint64_t w : b) h = (h ^ w) * 1099511628211ULL ^ (w >> 29);
+      return static_cast<std::size_t>(h);
+    }
+  };
+  std::unordered_map<std::array<std::uint64_t, 3>, int, PointHash> index_;
+};
+
+TriMesh weld_near(TriMesh exact, double tol);
+
+}  // namespace
+
 TriMesh weld_vertices(const TriMesh& mesh, double tol) {
   // 1. Identical positions (most of them: shared points are rounded from the same exact value).
-  const std::size_t n = mesh.vertices.size();
-  std::vector<int> parent(n);
-  //    Hashed on the coordinates' bits (-0 read as +0, which compares equal); the first
-  //    index seen with a position, the smallest, is the root.
-  {
-    struct PointHash {
-      std::size_t operator()(const std::array<std::uint64_t, 3>& b) const {
-        std::uint64_t h = 1469598103934665603ULL;
-        for (std::uint64_t w : b) h = (h ^ w) * 1099511628211ULL ^ (w >> 29);
-        return static_cast<std::size_t>(h);
-      }
-    };
-    std::unordered_map<std::array<std::uint64_t, 3>, int, PointHash> first;
-    first.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      std::array<std::uint64_t, 3> bits{};
-      for (int c = 0; c < 3; ++c) {
-        const double x = mesh.vertices[i][c] + 0.0;
-        std::memcpy(&bits[uz(c)], &x, sizeof x);
-      }
-      parent[i] = first.emplace(bits, static_cast<int>(i)).first->second;
-    }
-  }
-  TriMesh exact = apply_merge(mesh, parent);
+  ExactWelder welder(mesh.vertices.size());
+  std::vector<int> index(mesh.vertices.size());
+  for (std::size_t v = 0; v < index.size(); ++v) index[v] = welder.vertex(mesh.vertices[v]);
+  for (const auto& f : mesh.faces) welder.face(index[uz(f[0])], index[uz(f[1])], index[uz(f[2])]);
+  return weld_near(std::move(welder.mesh), tol);
+}
 
+namespace {
+
+TriMesh weld_near(TriMesh exact, double tol) {
   // 2. Near positions, only among vertices of boundary edges (where sides failed to meet):
   //    sort-and-sweep along x with union-find, smallest index wins.
   std::vector<std::uint64_t> edges;
@@ -323,6 +347,8 @@ TriMesh weld_vertices(const TriMesh& mesh, double tol) {
   }
   return apply_merge(exact, par2);
 }
+
+}  // namespace
 
 bool repair_close_vertices(TriMesh& m, double tol) {
   const std::size_t n = m.vertices.size();
@@ -414,16 +440,22 @@ void canonicalize(TriMesh& m) {
 }
 
 namespace {
-TriMesh weld_soup(const std::vector<std::array<Vec3, 3>>& soup, double tol, StitchReport& rep);
+TriMesh finish_weld(TriMesh exact, double tol, StitchReport& rep);
 }  // namespace
 
 TriMesh stitch_zones(const Partition& part, const std::vector<TriMesh>& solids, double tol, StitchReport* report) {
   StitchReport rep;
   std::map<std::array<int, 4>, FaceBucket> buckets;  // (axis, layer, cell_u, cell_v)
-  std::vector<std::array<Vec3, 3>> soup;
+  // The kept triangles go straight into the welder (each zone vertex hashed once), in the order
+  // of the soup they form: zones in order, then the caps.
+  std::size_t total = 0;
+  for (std::size_t zi = 0; zi < part.zones.size() && zi < solids.size(); ++zi) total += solids[zi].vertices.size();
+  ExactWelder welder(total);
+  std::vector<int> index;
   for (std::size_t zi = 0; zi < part.zones.size() && zi < solids.size(); ++zi) {
     const Zone& z = part.zones[zi];
     const TriMesh& s = solids[zi];
+    index.assign(s.vertices.size(), -1);
     for (const auto& f : s.faces) {
       const std::array<Vec3, 3> t{s.vertices[uz(f[0])], s.vertices[uz(f[1])], s.vertices[uz(f[2])]};
       int face = -1;
@@ -437,7 +469,13 @@ TriMesh stitch_zones(const Partition& part, const std::vector<TriMesh>& solids, 
         }
       }
       if (face < 0 || z.on_box[uz(face)]) {
-        soup.push_back(t);
+        std::array<int, 3> g{};
+        for (std::size_t i = 0; i < 3; ++i) {
+          int& v = index[uz(f[i])];
+          if (v < 0) v = welder.vertex(t[i]);
+          g[i] = v;
+        }
+        welder.face(g[0], g[1], g[2]);
         continue;
       }
       const int a = face / 2, side = face % 2;
@@ -450,8 +488,10 @@ TriMesh stitch_zones(const Partition& part, const std::vector<TriMesh>& solids, 
       ++rep.face_triangles_removed;
     }
   }
-  for (const auto& [key, b] : buckets) rep.cap_triangles_kept += cap_xor(b, soup);
-  TriMesh m = weld_soup(soup, tol, rep);
+  std::vector<std::array<Vec3, 3>> caps;
+  for (const auto& [key, b] : buckets) rep.cap_triangles_kept += cap_xor(b, caps);
+  for (const auto& t : caps) welder.triangle(t);
+  TriMesh m = finish_weld(std::move(welder.mesh), tol, rep);
   if (report) *report = rep;
   return m;
 }
@@ -492,22 +532,18 @@ TriMesh stitch_polyhedral_zones(const PolyPartition& part, const std::vector<Tri
     }
   }
   for (const auto& [key, b] : buckets) rep.cap_triangles_kept += cap_xor(b, soup);
-  TriMesh m = weld_soup(soup, tol, rep);
+  ExactWelder welder(soup.size() * 3);
+  for (const auto& t : soup) welder.triangle(t);
+  TriMesh m = finish_weld(std::move(welder.mesh), tol, rep);
   if (report) *report = rep;
   return m;
 }
 
 namespace {
 
-TriMesh weld_soup(const std::vector<std::array<Vec3, 3>>& soup, double tol, StitchReport& rep) {
-  TriMesh m;
-  m.vertices.reserve(soup.size() * 3);
-  for (const auto& t : soup) {
-    const int base = static_cast<int>(m.vertices.size());
-    m.vertices.insert(m.vertices.end(), t.begin(), t.end());
-    m.faces.push_back({base, base + 1, base + 2});
-  }
-  m = weld_vertices(m, tol);
+// Near merges, T-junctions and canonical order of a mesh whose identical points are merged.
+TriMesh finish_weld(TriMesh exact, double tol, StitchReport& rep) {
+  TriMesh m = weld_near(std::move(exact), tol);
   rep.t_junctions_split = split_t_junctions(m, tol);
   canonicalize(m);
   return m;
