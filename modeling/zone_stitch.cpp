@@ -289,7 +289,8 @@ class ExactWelder {
   std::unordered_map<std::array<std::uint64_t, 3>, int, PointHash> index_;
 };
 
-TriMesh weld_near(TriMesh exact, double tol);
+// `closed` (optional) is set when `exact` has no boundary edge (nothing to merge or split).
+TriMesh weld_near(TriMesh exact, double tol, bool* closed = nullptr);
 
 }  // namespace
 
@@ -304,7 +305,7 @@ TriMesh weld_vertices(const TriMesh& mesh, double tol) {
 
 namespace {
 
-TriMesh weld_near(TriMesh exact, double tol) {
+TriMesh weld_near(TriMesh exact, double tol, bool* closed) {
   // 2. Near positions, only among vertices of boundary edges (where sides failed to meet):
   //    sort-and-sweep along x with union-find, smallest index wins.
   std::vector<std::uint64_t> edges;
@@ -324,6 +325,7 @@ TriMesh weld_near(TriMesh exact, double tol) {
   }
   std::sort(cand.begin(), cand.end());
   cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+  if (closed) *closed = cand.empty();
   if (cand.empty()) return exact;
   std::vector<int> par2(exact.vertices.size());
   for (std::size_t i = 0; i < par2.size(); ++i) par2[i] = static_cast<int>(i);
@@ -543,8 +545,10 @@ namespace {
 
 // Near merges, T-junctions and canonical order of a mesh whose identical points are merged.
 TriMesh finish_weld(TriMesh exact, double tol, StitchReport& rep) {
-  TriMesh m = weld_near(std::move(exact), tol);
-  rep.t_junctions_split = split_t_junctions(m, tol);
+  // A closed mesh has no boundary edge for a T-junction to lie on.
+  bool closed = false;
+  TriMesh m = weld_near(std::move(exact), tol, &closed);
+  rep.t_junctions_split = closed ? 0 : split_t_junctions(m, tol);
   canonicalize(m);
   return m;
 }
