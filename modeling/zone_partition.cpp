@@ -133,6 +133,15 @@ Result<Partition> partition_zones(const ValidatedSections& vs, const Box3& box, 
     while (b1 < static_cast<int>(cv.size()) - 1 && cv[uz(b1)] < v1) ++b1;
     key.cu.assign(cu.begin() + a0, cu.begin() + std::min(a1 + 1, static_cast<int>(cu.size())));
     key.cv.assign(cv.begin() + b0, cv.begin() + std::min(b1 + 1, static_cast<int>(cv.size())));
+    // The outer rectangle sides strictly beyond the region's box touch nothing: they are moved
+    // to a place fixed by the region alone, so a plane added beyond the region (which moves
+    // them) leaves the key and the pieces unchanged, cached or fresh.
+    auto canonical_ends = [](std::vector<double>& c, double lo, double hi) {
+      if (c.front() < lo) c.front() = lo - (hi - lo);
+      if (c.back() > hi) c.back() = hi + (hi - lo);
+    };
+    canonical_ends(key.cu, u0, u1);
+    canonical_ends(key.cv, v0, v1);
     ContentHash hash;
     for (const auto& loop : key.loops) hash.points(loop);
     hash.doubles(key.cu);
@@ -144,10 +153,12 @@ Result<Partition> partition_zones(const ValidatedSections& vs, const Box3& box, 
       for (int a = a0; a < a1; ++a) {
         for (int b = b0; b < b1; ++b) {
           EPolygon rect;
-          rect.push_back(EPoint(cu[uz(a)], cv[uz(b)]));
-          rect.push_back(EPoint(cu[uz(a + 1)], cv[uz(b)]));
-          rect.push_back(EPoint(cu[uz(a + 1)], cv[uz(b + 1)]));
-          rect.push_back(EPoint(cu[uz(a)], cv[uz(b + 1)]));
+          const double ua = key.cu[uz(a - a0)], ub = key.cu[uz(a - a0 + 1)];
+          const double va = key.cv[uz(b - b0)], vb = key.cv[uz(b - b0 + 1)];
+          rect.push_back(EPoint(ua, va));
+          rect.push_back(EPoint(ub, va));
+          rect.push_back(EPoint(ub, vb));
+          rect.push_back(EPoint(ua, vb));
           std::vector<EPwh> pieces;
           CGAL::intersection(region, rect, std::back_inserter(pieces));
           for (const auto& c : pieces) {
