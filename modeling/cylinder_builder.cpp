@@ -172,12 +172,16 @@ bool self_intersects(const TriMesh& m) {
 // piece cannot intersect itself). Corefinement's contract needs valid operands; its
 // preconditions are compiled out.
 TriMesh checked_prism(const PieceCache& pc, const SectionPiece& piece, const Zone& zone, int k, double c0, double c1,
-                      const CylinderOptions& opt) {
+                      const CylinderOptions& opt, const CylinderCache* previous, CylinderCache* next) {
   for (const double first : {1.0, 0.25, 0.0625}) {
     const std::vector<Vec2> top = perturbed_top(pc, piece, zone, opt, first);
     if (top == pc.points) break;  // not pulled: the straight prism below
-    TriMesh m = prism(pc, k, c0, c1, top);
-    if (!self_intersects(m)) return m;
+    PrismKey key{prism(pc, k, c0, c1, top)};
+    ContentHash hash;
+    hash.mesh(key.prism);
+    if (!cached(previous ? &previous->self_intersecting : nullptr, next ? &next->self_intersecting : nullptr, hash.h,
+                key, [&] { return self_intersects(key.prism); }))
+      return std::move(key.prism);
   }
   return prism(pc, k, c0, c1, pc.points);
 }
@@ -204,7 +208,8 @@ std::vector<std::array<int, 3>> triangulate_piece(const SectionPiece& piece) {
   return tris;
 }
 
-std::vector<ZonePrimitives> build_cylinders(const Partition& part, const CylinderOptions& opt) {
+std::vector<ZonePrimitives> build_cylinders(const Partition& part, const CylinderOptions& opt,
+                                            const CylinderCache* previous, CylinderCache* next) {
   const ZoneGrid& g = part.grid;
   std::vector<PieceCache> cache(part.pieces.size());
   for (std::size_t i = 0; i < part.pieces.size(); ++i) {
@@ -215,7 +220,10 @@ std::vector<ZonePrimitives> build_cylinders(const Partition& part, const Cylinde
       pc.points.insert(pc.points.end(), loop.begin(), loop.end());
       pc.loop_range.push_back({b, static_cast<int>(pc.points.size())});
     }
-    pc.tris = triangulate_piece(p);
+    ContentHash hash;
+    for (const auto& loop : p.loops) hash.points(loop);
+    pc.tris = cached(previous ? &previous->caps : nullptr, next ? &next->caps : nullptr, hash.h, p.loops,
+                     [&] { return triangulate_piece(p); });
   }
 
   std::vector<ZonePrimitives> out(part.zones.size());
@@ -232,7 +240,7 @@ std::vector<ZonePrimitives> build_cylinders(const Partition& part, const Cylinde
         if (z.type == ZoneType::kBody) {
           // === Body zone: Eq. 4.1 with the 4.3 perturbation.
           const double h = z.extent(k) * (1.0 - opt.height_margin);
-          out[zi].solids.push_back(checked_prism(pc, piece, z, k, c0, c0 + dir * h, opt));
+          out[zi].solids.push_back(checked_prism(pc, piece, z, k, c0, c0 + dir * h, opt, previous, next));
           out[zi].info.push_back({pid, f, true, static_cast<int>(pc.points.size())});
           continue;
         }
@@ -246,7 +254,7 @@ std::vector<ZonePrimitives> build_cylinders(const Partition& part, const Cylinde
           const bool last = zz.on_box[uz(far_face)] || (!first && zz.type != ZoneType::kEmpty);
           if (last) {
             const double h = zz.extent(k) * (1.0 - opt.height_margin);
-            out[id].solids.push_back(checked_prism(pc, piece, zz, k, bottom, bottom + dir * h, opt));
+            out[id].solids.push_back(checked_prism(pc, piece, zz, k, bottom, bottom + dir * h, opt, previous, next));
             out[id].info.push_back({pid, f, false, static_cast<int>(pc.points.size())});
             break;
           }

@@ -22,6 +22,7 @@
 // Every primitive is a closed, outward-oriented triangle mesh.
 #include <vector>
 
+#include "modeling/content_cache.h"
 #include "modeling/mesh.h"
 #include "modeling/zone_partition.h"
 
@@ -52,7 +53,20 @@ struct ZonePrimitives {
 // in the plane's 2D frame.
 std::vector<std::array<int, 3>> triangulate_piece(const SectionPiece& piece);
 
-// Primitives per zone (indexed like Partition::zones).
-std::vector<ZonePrimitives> build_cylinders(const Partition& partition, const CylinderOptions& options = {});
+// What the progressive reconstructor keeps of one run's primitives: cap triangulations by
+// piece loops, and whether a pulled prism intersects itself, by prism.
+struct PrismKey {
+  TriMesh prism;
+  bool operator==(const PrismKey& o) const { return prism.vertices == o.prism.vertices && prism.faces == o.prism.faces; }
+};
+struct CylinderCache {
+  ContentCache<std::vector<std::vector<Vec2>>, std::vector<std::array<int, 3>>> caps;
+  ContentCache<PrismKey, bool> self_intersecting;
+};
+
+// Primitives per zone (indexed like Partition::zones). Results found in `previous` are reused;
+// everything computed or reused goes to `next` (either may be null).
+std::vector<ZonePrimitives> build_cylinders(const Partition& partition, const CylinderOptions& options = {},
+                                            const CylinderCache* previous = nullptr, CylinderCache* next = nullptr);
 
 }  // namespace ps

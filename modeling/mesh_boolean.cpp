@@ -66,9 +66,15 @@ TriMesh to_tri_mesh(SurfaceMesh& sm) {
   for (auto v : sm.vertices()) {
     const auto& p = sm.point(v);
     // Round from the exact value: to_double of a lazy number depends on how far it was
-    // evaluated, which would make the output depend on evaluation history.
-    m.vertices.emplace_back(CGAL::to_double(CGAL::exact(p.x())), CGAL::to_double(CGAL::exact(p.y())),
-                            CGAL::to_double(CGAL::exact(p.z())));
+    // evaluated, which would make the output depend on evaluation history. An interval
+    // approximation that is a single double (every input point) is the exact value already.
+    const auto& a = CGAL::approx(p);
+    if (a.x().is_point() && a.y().is_point() && a.z().is_point()) {
+      m.vertices.emplace_back(a.x().inf(), a.y().inf(), a.z().inf());
+    } else {
+      const auto& e = CGAL::exact(p);
+      m.vertices.emplace_back(CGAL::to_double(e.x()), CGAL::to_double(e.y()), CGAL::to_double(e.z()));
+    }
   }
   m.faces.reserve(sm.number_of_faces());
   for (auto f : sm.faces()) {

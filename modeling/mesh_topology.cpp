@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <numeric>
 #include <sstream>
-#include <unordered_map>
+#include <array>
 
 namespace ps {
 namespace {
@@ -41,30 +41,46 @@ double signed_volume(const TriMesh& mesh) {
   return v / 6.0;
 }
 
-int face_components(const TriMesh& mesh, std::vector<int>& component_of_face) {
-  const std::size_t nf = mesh.faces.size();
-  DisjointSets ds(nf);
-  std::unordered_map<std::uint64_t, int> first_face_of_edge;
-  first_face_of_edge.reserve(nf * 3);
-  for (std::size_t fi = 0; fi < nf; ++fi) {
+namespace {
+
+// Undirected edge keys (smaller index first) tagged with 2 * face + (1 if the face runs from
+// the larger index to the smaller), sorted: equal keys are adjacent. Sorting a flat vector is
+// several times faster than a hash map of the same edges.
+std::vector<std::pair<std::uint64_t, int>> sorted_undirected_edges(const TriMesh& mesh) {
+  std::vector<std::pair<std::uint64_t, int>> edges;
+  edges.reserve(mesh.faces.size() * 3);
+  for (std::size_t fi = 0; fi < mesh.faces.size(); ++fi) {
     const auto& f = mesh.faces[fi];
     for (int k = 0; k < 3; ++k) {
-      int a = f[static_cast<std::size_t>(k)], b = f[static_cast<std::size_t>((k + 1) % 3)];
-      if (a > b) std::swap(a, b);
-      auto [it, inserted] = first_face_of_edge.emplace(edge_key(a, b), static_cast<int>(fi));
-      if (!inserted) ds.unite(static_cast<int>(fi), it->second);
+      const int a = f[static_cast<std::size_t>(k)], b = f[static_cast<std::size_t>((k + 1) % 3)];
+      edges.emplace_back(edge_key(std::min(a, b), std::max(a, b)), 2 * static_cast<int>(fi) + (a > b ? 1 : 0));
     }
   }
+  std::sort(edges.begin(), edges.end());
+  return edges;
+}
+
+int components_from_edges(std::size_t nf, const std::vector<std::pair<std::uint64_t, int>>& edges,
+                          std::vector<int>& component_of_face) {
+  DisjointSets ds(nf);
+  for (std::size_t i = 1; i < edges.size(); ++i)
+    if (edges[i].first == edges[i - 1].first) ds.unite(edges[i].second / 2, edges[i - 1].second / 2);
+  // Ids in order of each component's first face (independent of the union-find's roots).
   component_of_face.assign(nf, -1);
-  std::unordered_map<int, int> root_to_id;
+  std::vector<int> id_of_root(nf, -1);
   int count = 0;
   for (std::size_t fi = 0; fi < nf; ++fi) {
-    const int r = ds.find(static_cast<int>(fi));
-    auto [it, inserted] = root_to_id.emplace(r, count);
-    if (inserted) ++count;
-    component_of_face[fi] = it->second;
+    int& id = id_of_root[static_cast<std::size_t>(ds.find(static_cast<int>(fi)))];
+    if (id < 0) id = count++;
+    component_of_face[fi] = id;
   }
   return count;
+}
+
+}  // namespace
+
+int face_components(const TriMesh& mesh, std::vector<int>& component_of_face) {
+  return components_from_edges(mesh.faces.size(), sorted_undirected_edges(mesh), component_of_face);
 }
 
 MeshTopology mesh_topology(const TriMesh& mesh) {
@@ -96,62 +112,75 @@ MeshTopology mesh_topology(const TriMesh& mesh) {
     if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2] || !(area2 > area_eps)) ++t.degenerate_faces;
   }
 
-  // === Edges: undirected incidence and directed uniqueness
-  std::unordered_map<std::uint64_t, int> undirected;
-  std::unordered_map<std::uint64_t, int> directed;
-  undirected.reserve(nf * 3);
-  directed.reserve(nf * 3);
-  for (const auto& f : mesh.faces) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = f[static_cast<std::size_t>(k)], b = f[static_cast<std::size_t>((k + 1) % 3)];
-      ++directed[edge_key(a, b)];
-      ++undirected[edge_key(std::min(a, b), std::max(a, b))];
-    }
-  }
+  // === Edges: undirected incidence and directed uniqueness (sorted keys, runs counted)
+  const auto undirected = sorted_undirected_edges(mesh);
+  long distinct_edges = 0;
+  // A directed edge repeats when two half-edges of one undirected edge run the same way.
   bool dir_ok = true;
-  for (const auto& [k, c] : directed)
-    if (c > 1) dir_ok = false;
-  for (const auto& [k, c] : undirected) {
-    if (c == 1) ++t.boundary_edges;
-    if (c > 2) ++t.nonmanifold_edges;
+  for (std::size_t i = 0; i < undirected.size();) {
+    std::size_t j = i + 1;
+    while (j < undirected.size() && undirected[j].first == undirected[i].first) ++j;
+    ++distinct_edges;
+    if (j - i == 1) ++t.boundary_edges;
+    if (j - i > 2) ++t.nonmanifold_edges;
+    int ways[2] = {0, 0};
+    for (std::size_t e = i; e < j; ++e) ++ways[undirected[e].second & 1];
+    if (ways[0] > 1 || ways[1] > 1) dir_ok = false;
+    i = j;
   }
   t.closed = t.boundary_edges == 0 && nf > 0;
   t.edge_manifold = t.nonmanifold_edges == 0;
   t.consistently_oriented = dir_ok;
 
   // === Vertex manifoldness: the faces around a vertex are connected through shared edges
-  // into a single fan (checked with a union-find over the incident faces).
-  std::vector<std::vector<int>> vf(nv);
-  for (std::size_t fi = 0; fi < nf; ++fi)
-    for (int v : mesh.faces[fi]) vf[static_cast<std::size_t>(v)].push_back(static_cast<int>(fi));
-  std::vector<int> referenced_vertices;
+  // into a single fan (checked with a union-find over the incident faces). Incident faces in
+  // compressed rows; two faces of a fan are joined when they share a neighbour vertex.
+  std::vector<int> start(nv + 1, 0);
+  for (const auto& f : mesh.faces)
+    for (int v : f) ++start[static_cast<std::size_t>(v) + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<int> incident(static_cast<std::size_t>(start[nv]));
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (std::size_t fi = 0; fi < nf; ++fi)
+      for (int v : mesh.faces[fi]) incident[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<int>(fi);
+  }
+  long referenced_vertices = 0;
+  std::vector<std::array<int, 3>> spokes;  // (neighbour vertex, local face) pairs of one vertex
+  std::vector<int> local_parent;
   for (std::size_t v = 0; v < nv; ++v) {
-    const auto& fs = vf[v];
-    if (fs.empty()) {
+    const auto b = static_cast<std::size_t>(start[v]), e = static_cast<std::size_t>(start[v + 1]);
+    if (b == e) {
       ++t.isolated_vertices;
       continue;
     }
-    referenced_vertices.push_back(static_cast<int>(v));
-    // other-vertex -> local face indices
-    std::unordered_map<int, std::vector<int>> by_neighbor;
-    for (std::size_t i = 0; i < fs.size(); ++i)
-      for (int w : mesh.faces[static_cast<std::size_t>(fs[i])])
-        if (w != static_cast<int>(v)) by_neighbor[w].push_back(static_cast<int>(i));
-    DisjointSets ds(fs.size());
-    for (const auto& [w, list] : by_neighbor)
-      for (std::size_t i = 1; i < list.size(); ++i) ds.unite(list[0], list[i]);
+    ++referenced_vertices;
+    spokes.clear();
+    for (std::size_t i = b; i < e; ++i)
+      for (int w : mesh.faces[static_cast<std::size_t>(incident[i])])
+        if (w != static_cast<int>(v)) spokes.push_back({w, static_cast<int>(i - b), 0});
+    std::sort(spokes.begin(), spokes.end());
+    local_parent.resize(e - b);
+    std::iota(local_parent.begin(), local_parent.end(), 0);
+    auto find = [&](int x) {
+      while (local_parent[static_cast<std::size_t>(x)] != x) x = local_parent[static_cast<std::size_t>(x)] =
+          local_parent[static_cast<std::size_t>(local_parent[static_cast<std::size_t>(x)])];
+      return x;
+    };
+    for (std::size_t i = 1; i < spokes.size(); ++i)
+      if (spokes[i][0] == spokes[i - 1][0]) local_parent[static_cast<std::size_t>(find(spokes[i][1]))] = find(spokes[i - 1][1]);
     int roots = 0;
-    for (std::size_t i = 0; i < fs.size(); ++i)
-      if (ds.find(static_cast<int>(i)) == static_cast<int>(i)) ++roots;
+    for (std::size_t i = 0; i < e - b; ++i)
+      if (find(static_cast<int>(i)) == static_cast<int>(i)) ++roots;
     if (roots != 1) ++t.nonmanifold_vertices;
   }
   t.vertex_manifold = t.nonmanifold_vertices == 0;
 
   // === Components, Euler characteristic, genus
   std::vector<int> comp;
-  t.components = face_components(mesh, comp);
-  const long V = static_cast<long>(referenced_vertices.size());
-  const long E = static_cast<long>(undirected.size());
+  t.components = components_from_edges(nf, undirected, comp);
+  const long V = referenced_vertices;
+  const long E = distinct_edges;
   const long F = static_cast<long>(nf);
   t.euler_characteristic = static_cast<int>(V - E + F);
   if (t.closed && t.manifold() && t.consistently_oriented) {

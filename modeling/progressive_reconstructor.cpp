@@ -72,18 +72,13 @@ SectionSet canonical_sections(const SectionSet& s) {
 }
 
 std::uint64_t hash_meshes(const std::vector<TriMesh>& ms) {
-  std::uint64_t h = 1469598103934665603ULL;
-  auto mix = [&](const void* data, std::size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ULL;
-  };
+  ContentHash h;
   for (const auto& m : ms) {
-    for (const auto& v : m.vertices) mix(v.data(), sizeof(double) * 3);
-    for (const auto& f : m.faces) mix(f.data(), sizeof(int) * 3);
-    const std::size_t n = m.faces.size();
-    mix(&n, sizeof n);
+    for (const auto& v : m.vertices) h.bytes(v.data(), sizeof(double) * 3);
+    for (const auto& f : m.faces) h.bytes(f.data(), sizeof(int) * 3);
+    h.size(m.faces.size());
   }
-  return h;
+  return h.h;
 }
 
 bool same_meshes(const std::vector<TriMesh>& a, const std::vector<TriMesh>& b) {
@@ -380,10 +375,10 @@ Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSectio
                                                            const std::vector<TopologyEdit>& edits,
                                                            std::size_t strict_from, ReconstructReport& rep,
                                                            const std::function<void(const char*, double)>& progress,
-                                                           std::multimap<std::uint64_t, CacheEntry>& next_cache) const {
+                                                           Caches& next_cache) const {
   const double diag = box.diagonal();
   auto t = Clock::now();
-  auto part = partition_zones(scaled, box);
+  auto part = partition_zones(scaled, box, &cache_.clips, &next_cache.clips);
   if (!part) return part.status();
   count_zones(*part, rep);
   rep.timings.partition_ms = ms_since(t);
@@ -391,7 +386,7 @@ Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSectio
 
   // === Primitives
   t = Clock::now();
-  std::vector<ZonePrimitives> prims = build_cylinders(*part);
+  std::vector<ZonePrimitives> prims = build_cylinders(*part, {}, &cache_.cylinders, &next_cache.cylinders);
   // === Topology edits (6.4), in the scaled coordinates; they change a few zones' primitives,
   // so only those zones miss the cache below.
   for (std::size_t i = 0; i < edits.size(); ++i) {
@@ -417,7 +412,7 @@ Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSectio
     if (prims[z].solids.empty()) continue;
     keys[z] = hash_meshes(prims[z].solids);
     bool hit = false;
-    for (auto [it, end] = cache_.equal_range(keys[z]); it != end; ++it)
+    for (auto [it, end] = cache_.zones.equal_range(keys[z]); it != end; ++it)
       if (same_meshes(it->second.primitives, prims[z].solids)) {
         solids[z] = it->second.solid;
         hit = true;
@@ -466,7 +461,7 @@ Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSectio
     return Result<TriMesh>::error(
         "reconstruction failed: the stitched surface intersects itself where two vertices almost coincide");
   for (std::size_t z = 0; z < prims.size(); ++z)
-    if (!prims[z].solids.empty()) next_cache.emplace(keys[z], CacheEntry{prims[z].solids, solids[z]});
+    if (!prims[z].solids.empty()) next_cache.zones.emplace(keys[z], CacheEntry{prims[z].solids, solids[z]});
   rep.timings.stitch_ms += ms_since(t);
   return mesh;
 }
@@ -556,7 +551,7 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
   box = scaled_box(box, k);
   const double diag = box.diagonal();
   const double tol = 1e-10 * diag;
-  std::multimap<std::uint64_t, CacheEntry> cache;
+  Caches cache;
   TriMesh mesh;
   if (!orthogonal && strict_from < edits.size())
     return Result<TriMesh>::error(std::string(topology_edit_name(edits[strict_from].kind)) +

@@ -64,19 +64,27 @@ class ProgressiveReconstructor {
     std::vector<TriMesh> primitives;
     TriMesh solid;
   };
+  // One run's reusable results: zone unions by primitives, region clippings, cap
+  // triangulations and prism checks.
+  struct Caches {
+    std::multimap<std::uint64_t, CacheEntry> zones;
+    ClipCache clips;
+    CylinderCache cylinders;
+    void clear() { *this = Caches{}; }
+  };
   // Edits from index `strict_from` on must apply; earlier ones are skipped with a warning.
   Result<TriMesh> update_with(const SectionSet& sections, const std::vector<TopologyEdit>& edits,
                               std::size_t strict_from, ReconstructReport* report);
   Result<TriMesh> reconstruct_grid(const ValidatedSections& scaled, const Box3& box, double tol, int scale_exponent,
                                    const std::vector<TopologyEdit>& edits, std::size_t strict_from,
                                    ReconstructReport& rep, const std::function<void(const char*, double)>& progress,
-                                   std::multimap<std::uint64_t, CacheEntry>& next_cache) const;
+                                   Caches& next_cache) const;
   ReconstructOptions options_;
   SectionSet sections_;
   TriMesh mesh_;
   Box3 box_;
   bool box_fixed_ = false;
-  std::multimap<std::uint64_t, CacheEntry> cache_;
+  Caches cache_;
   std::vector<TopologyEdit> edits_;
 };
 

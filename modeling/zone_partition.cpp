@@ -55,7 +55,8 @@ Box3 default_reconstruction_box(const std::vector<Vec3>& points) {
   return out;
 }
 
-Result<Partition> partition_zones(const ValidatedSections& vs, const Box3& box) {
+Result<Partition> partition_zones(const ValidatedSections& vs, const Box3& box, const ClipCache* previous,
+                                  ClipCache* next) {
   const SectionSet& s = vs.sections;
   Partition part;
   part.grid.box = box;
@@ -112,49 +113,84 @@ Result<Partition> partition_zones(const ValidatedSections& vs, const Box3& box) 
     const auto& cv = g.coords[uz(av)];
     const int layer = static_cast<int>(std::lower_bound(g.coords[uz(k)].begin(), g.coords[uz(k)].end(), pl.offset) -
                                        g.coords[uz(k)].begin());
-    std::vector<Vec2> outer;
-    for (const auto& p : s.curves[uz(r.outer)].points) outer.push_back(fr.to_2d(p));
-    EPwh region(to_exact(outer, true));
+    RegionClipKey key;
+    key.loops.emplace_back();
+    for (const auto& p : s.curves[uz(r.outer)].points) key.loops[0].push_back(fr.to_2d(p));
     for (int h : r.holes) {
-      std::vector<Vec2> hole;
-      for (const auto& p : s.curves[uz(h)].points) hole.push_back(fr.to_2d(p));
-      region.add_hole(to_exact(hole, false));
+      key.loops.emplace_back();
+      for (const auto& p : s.curves[uz(h)].points) key.loops.back().push_back(fr.to_2d(p));
     }
+    const std::vector<Vec2>& outer = key.loops[0];
     double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;
     for (const auto& q : outer) {
       u0 = std::min(u0, q.x()); u1 = std::max(u1, q.x());
       v0 = std::min(v0, q.y()); v1 = std::max(v1, q.y());
     }
-    for (int a = first_cell(cu, u0); a < static_cast<int>(cu.size()) - 1 && cu[uz(a)] < u1; ++a) {
-      for (int b = first_cell(cv, v0); b < static_cast<int>(cv.size()) - 1 && cv[uz(b)] < v1; ++b) {
-        EPolygon rect;
-        rect.push_back(EPoint(cu[uz(a)], cv[uz(b)]));
-        rect.push_back(EPoint(cu[uz(a + 1)], cv[uz(b)]));
-        rect.push_back(EPoint(cu[uz(a + 1)], cv[uz(b + 1)]));
-        rect.push_back(EPoint(cu[uz(a)], cv[uz(b + 1)]));
-        std::vector<EPwh> clipped;
-        CGAL::intersection(region, rect, std::back_inserter(clipped));
-        for (const auto& c : clipped) {
-          SectionPiece piece;
-          piece.plane = r.plane;
-          piece.axis = k;
-          piece.layer = layer;
-          piece.cell = {a, b};
-          piece.loops.push_back(to_double(c.outer_boundary()));
-          for (auto h = c.holes_begin(); h != c.holes_end(); ++h) piece.loops.push_back(to_double(*h));
-          const int id = static_cast<int>(part.pieces.size());
-          part.pieces.push_back(std::move(piece));
-          // The piece lies on the max face of the zone below the plane and the min face of the
-          // zone above it.
-          std::array<int, 3> cell{};
-          cell[uz(k)] = layer - 1;
-          cell[uz(au)] = a;
-          cell[uz(av)] = b;
-          part.zones[uz(g.index(cell))].face_pieces[uz(2 * k + 1)].push_back(id);
-          cell[uz(k)] = layer;
-          part.zones[uz(g.index(cell))].face_pieces[uz(2 * k)].push_back(id);
+    // Cells [a0, a1) x [b0, b1) overlap the region's box; their coordinates are part of the key.
+    const int a0 = first_cell(cu, u0), b0 = first_cell(cv, v0);
+    int a1 = a0, b1 = b0;
+    while (a1 < static_cast<int>(cu.size()) - 1 && cu[uz(a1)] < u1) ++a1;
+    while (b1 < static_cast<int>(cv.size()) - 1 && cv[uz(b1)] < v1) ++b1;
+    key.cu.assign(cu.begin() + a0, cu.begin() + std::min(a1 + 1, static_cast<int>(cu.size())));
+    key.cv.assign(cv.begin() + b0, cv.begin() + std::min(b1 + 1, static_cast<int>(cv.size())));
+    // The outer rectangle sides strictly beyond the region's box touch nothing: they are moved
+    // to a place fixed by the region alone, so a plane added beyond the region (which moves
+    // them) leaves the key and the pieces unchanged, cached or fresh.
+    auto canonical_ends = [](std::vector<double>& c, double lo, double hi) {
+      if (c.front() < lo) c.front() = lo - (hi - lo);
+      if (c.back() > hi) c.back() = hi + (hi - lo);
+    };
+    canonical_ends(key.cu, u0, u1);
+    canonical_ends(key.cv, v0, v1);
+    ContentHash hash;
+    for (const auto& loop : key.loops) hash.points(loop);
+    hash.doubles(key.cu);
+    hash.doubles(key.cv);
+    const std::vector<ClippedPiece> clipped = cached(previous, next, hash.h, key, [&] {
+      EPwh region(to_exact(key.loops[0], true));
+      for (std::size_t h = 1; h < key.loops.size(); ++h) region.add_hole(to_exact(key.loops[h], false));
+      std::vector<ClippedPiece> out;
+      for (int a = a0; a < a1; ++a) {
+        for (int b = b0; b < b1; ++b) {
+          EPolygon rect;
+          const double ua = key.cu[uz(a - a0)], ub = key.cu[uz(a - a0 + 1)];
+          const double va = key.cv[uz(b - b0)], vb = key.cv[uz(b - b0 + 1)];
+          rect.push_back(EPoint(ua, va));
+          rect.push_back(EPoint(ub, va));
+          rect.push_back(EPoint(ub, vb));
+          rect.push_back(EPoint(ua, vb));
+          std::vector<EPwh> pieces;
+          CGAL::intersection(region, rect, std::back_inserter(pieces));
+          for (const auto& c : pieces) {
+            ClippedPiece piece;
+            piece.cell = {a - a0, b - b0};
+            piece.loops.push_back(to_double(c.outer_boundary()));
+            for (auto h = c.holes_begin(); h != c.holes_end(); ++h) piece.loops.push_back(to_double(*h));
+            out.push_back(std::move(piece));
+          }
         }
       }
+      return out;
+    });
+    for (const auto& c : clipped) {
+      SectionPiece piece;
+      piece.plane = r.plane;
+      piece.axis = k;
+      piece.layer = layer;
+      const int a = a0 + c.cell[0], b = b0 + c.cell[1];
+      piece.cell = {a, b};
+      piece.loops = c.loops;
+      const int id = static_cast<int>(part.pieces.size());
+      part.pieces.push_back(std::move(piece));
+      // The piece lies on the max face of the zone below the plane and the min face of the
+      // zone above it.
+      std::array<int, 3> cell{};
+      cell[uz(k)] = layer - 1;
+      cell[uz(au)] = a;
+      cell[uz(av)] = b;
+      part.zones[uz(g.index(cell))].face_pieces[uz(2 * k + 1)].push_back(id);
+      cell[uz(k)] = layer;
+      part.zones[uz(g.index(cell))].face_pieces[uz(2 * k)].push_back(id);
     }
   }
 

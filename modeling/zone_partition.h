@@ -12,6 +12,7 @@
 #include <array>
 #include <vector>
 
+#include "modeling/content_cache.h"
 #include "modeling/cross_section.h"
 #include "modeling/mesh.h"
 #include "modeling/section_validate.h"
@@ -68,7 +69,23 @@ struct Partition {
 // (a flat direction gets half the largest size, so a single section still has room).
 Box3 default_reconstruction_box(const std::vector<Vec3>& points);
 
+// The clipping of one region (its loops in the plane's 2D frame) by the face rectangles it
+// overlaps (the grid coordinates spanning it), for the progressive reconstructor: pieces with
+// their cell relative to the first overlapped cell, in clipping order.
+struct RegionClipKey {
+  std::vector<std::vector<Vec2>> loops;
+  std::vector<double> cu, cv;
+  bool operator==(const RegionClipKey&) const = default;
+};
+struct ClippedPiece {
+  std::array<int, 2> cell{0, 0};
+  std::vector<std::vector<Vec2>> loops;
+};
+using ClipCache = ContentCache<RegionClipKey, std::vector<ClippedPiece>>;
+
 // Requires orthogonal validated input and a box containing every point strictly inside.
-Result<Partition> partition_zones(const ValidatedSections& sections, const Box3& box);
+// Regions found in `previous` are not clipped again; every region's clipping goes to `next`.
+Result<Partition> partition_zones(const ValidatedSections& sections, const Box3& box,
+                                  const ClipCache* previous = nullptr, ClipCache* next = nullptr);
 
 }  // namespace ps

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <map>
 #include <tuple>
 #include <unordered_map>
@@ -133,20 +134,28 @@ std::uint64_t edge_key(int a, int b) {
 int split_t_junctions(TriMesh& m, double tol) {
   int total = 0;
   for (int pass = 0; pass < 4; ++pass) {
-    std::unordered_map<std::uint64_t, int> count;
-    for (const auto& f : m.faces)
-      for (int i = 0; i < 3; ++i) ++count[edge_key(f[uz(i)], f[uz((i + 1) % 3)])];
-    std::vector<char> boundary_vertex(m.vertices.size(), 0);
-    std::vector<std::array<int, 3>> bedges;  // face, corner i (edge i -> i+1)
+    // Edges used once: sorted (key, 3 * face + corner) pairs, runs of length one.
+    std::vector<std::pair<std::uint64_t, std::size_t>> half;
+    half.reserve(m.faces.size() * 3);
     for (std::size_t fi = 0; fi < m.faces.size(); ++fi)
-      for (int i = 0; i < 3; ++i) {
-        const int a = m.faces[fi][uz(i)], b = m.faces[fi][uz((i + 1) % 3)];
-        if (count[edge_key(a, b)] == 1) {
-          bedges.push_back({static_cast<int>(fi), i, 0});
-          boundary_vertex[uz(a)] = boundary_vertex[uz(b)] = 1;
-        }
+      for (int i = 0; i < 3; ++i)
+        half.emplace_back(edge_key(m.faces[fi][uz(i)], m.faces[fi][uz((i + 1) % 3)]), 3 * fi + uz(i));
+    std::sort(half.begin(), half.end());
+    std::vector<char> boundary_vertex(m.vertices.size(), 0);
+    std::vector<std::array<int, 3>> bedges;  // face, corner i (edge i -> i+1), in face order
+    for (std::size_t i = 0; i < half.size();) {
+      std::size_t j = i + 1;
+      while (j < half.size() && half[j].first == half[i].first) ++j;
+      if (j - i == 1) {
+        const std::size_t fi = half[i].second / 3;
+        const int c = static_cast<int>(half[i].second % 3);
+        bedges.push_back({static_cast<int>(fi), c, 0});
+        boundary_vertex[uz(m.faces[fi][uz(c)])] = boundary_vertex[uz(m.faces[fi][uz((c + 1) % 3)])] = 1;
       }
+      i = j;
+    }
     if (bedges.empty()) break;
+    std::sort(bedges.begin(), bedges.end());
     double mean = 0.0;
     for (const auto& e : bedges) {
       const auto& f = m.faces[uz(e[0])];
@@ -245,21 +254,58 @@ TriMesh apply_merge(const TriMesh& mesh, std::vector<int>& parent) {
 
 }  // namespace
 
+namespace {
+
+// Merges bit-identical positions while a mesh is built (-0 counts as +0, which compares
+// equal): vertices are numbered in order of first appearance and faces that collapse are
+// dropped, which is what merging a finished soup with the smallest index as root gives.
+class ExactWelder {
+ public:
+  explicit ExactWelder(std::size_t vertices) { index_.reserve(vertices); }
+  int vertex(const Vec3& p) {
+    std::array<std::uint64_t, 3> bits{};
+    for (int c = 0; c < 3; ++c) {
+      const double x = p[c] + 0.0;
+      std::memcpy(&bits[uz(c)], &x, sizeof x);
+    }
+    const auto [it, inserted] = index_.emplace(bits, static_cast<int>(mesh.vertices.size()));
+    if (inserted) mesh.vertices.push_back(p);
+    return it->second;
+  }
+  void face(int a, int b, int c) {
+    if (a != b && b != c && a != c) mesh.faces.push_back({a, b, c});
+  }
+  void triangle(const std::array<Vec3, 3>& t) { face(vertex(t[0]), vertex(t[1]), vertex(t[2])); }
+  TriMesh mesh;
+
+ private:
+  struct PointHash {
+    std::size_t operator()(const std::array<std::uint64_t, 3>& b) const {
+      std::uint64_t h = 1469598103934665603ULL;
+      for (std::uint64_t w : b) h = (h ^ w) * 1099511628211ULL ^ (w >> 29);
+      return static_cast<std::size_t>(h);
+    }
+  };
+  std::unordered_map<std::array<std::uint64_t, 3>, int, PointHash> index_;
+};
+
+// `closed` (optional) is set when `exact` has no boundary edge (nothing to merge or split).
+TriMesh weld_near(TriMesh exact, double tol, bool* closed = nullptr);
+
+}  // namespace
+
 TriMesh weld_vertices(const TriMesh& mesh, double tol) {
   // 1. Identical positions (most of them: shared points are rounded from the same exact value).
-  const std::size_t n = mesh.vertices.size();
-  std::vector<int> order(n), parent(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = parent[i] = static_cast<int>(i);
-  auto key = [&](int a) {
-    const Vec3& p = mesh.vertices[uz(a)];
-    return std::make_tuple(p.x(), p.y(), p.z(), a);
-  };
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
-  for (std::size_t a = 1; a < n; ++a)
-    if (mesh.vertices[uz(order[a])] == mesh.vertices[uz(order[a - 1])])
-      parent[uz(order[a])] = parent[uz(order[a - 1])];  // run root: the smallest index
-  TriMesh exact = apply_merge(mesh, parent);
+  ExactWelder welder(mesh.vertices.size());
+  std::vector<int> index(mesh.vertices.size());
+  for (std::size_t v = 0; v < index.size(); ++v) index[v] = welder.vertex(mesh.vertices[v]);
+  for (const auto& f : mesh.faces) welder.face(index[uz(f[0])], index[uz(f[1])], index[uz(f[2])]);
+  return weld_near(std::move(welder.mesh), tol);
+}
 
+namespace {
+
+TriMesh weld_near(TriMesh exact, double tol, bool* closed) {
   // 2. Near positions, only among vertices of boundary edges (where sides failed to meet):
   //    sort-and-sweep along x with union-find, smallest index wins.
   std::vector<std::uint64_t> edges;
@@ -279,6 +325,7 @@ TriMesh weld_vertices(const TriMesh& mesh, double tol) {
   }
   std::sort(cand.begin(), cand.end());
   cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+  if (closed) *closed = cand.empty();
   if (cand.empty()) return exact;
   std::vector<int> par2(exact.vertices.size());
   for (std::size_t i = 0; i < par2.size(); ++i) par2[i] = static_cast<int>(i);
@@ -303,6 +350,8 @@ TriMesh weld_vertices(const TriMesh& mesh, double tol) {
   return apply_merge(exact, par2);
 }
 
+}  // namespace
+
 bool repair_close_vertices(TriMesh& m, double tol) {
   const std::size_t n = m.vertices.size();
   std::vector<int> parent(n);
@@ -314,28 +363,33 @@ bool repair_close_vertices(TriMesh& m, double tol) {
   // Grid hash with cells of size tol: a vertex within tol of another lies in a neighbouring
   // cell. (A sweep along one axis is quadratic here: thousands of vertices share the
   // coordinate of a zone face.)
+  //    Cells sorted lexicographically; the neighbours of a cell are found by binary search on
+  //    its 9 neighbouring (x, y) columns (no hash map of 20k small vectors).
   if (!(tol > 0)) return true;
-  std::unordered_map<CellKey, std::vector<int>, CellHash> grid;
-  grid.reserve(n);
-  for (std::size_t v = 0; v < n; ++v) grid[cell_of(m.vertices[v], tol)].push_back(static_cast<int>(v));
+  std::vector<std::pair<std::array<std::int64_t, 3>, int>> cells(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    const CellKey c = cell_of(m.vertices[v], tol);
+    cells[v] = {{c.x, c.y, c.z}, static_cast<int>(v)};
+  }
+  std::sort(cells.begin(), cells.end());
   std::vector<char> close(n, 0);
   bool any = false;
   for (std::size_t v = 0; v < n; ++v) {
     const Vec3& p = m.vertices[v];
     const CellKey c = cell_of(p, tol);
     for (std::int64_t dx = -1; dx <= 1; ++dx)
-      for (std::int64_t dy = -1; dy <= 1; ++dy)
-        for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          const auto it = grid.find({c.x + dx, c.y + dy, c.z + dz});
-          if (it == grid.end()) continue;
-          for (int w : it->second) {
-            if (uz(w) <= v || (m.vertices[uz(w)] - p).norm() > tol) continue;
-            close[v] = close[uz(w)] = 1;
-            const int ra = find(static_cast<int>(v)), rb = find(w);
-            if (ra != rb) parent[uz(std::max(ra, rb))] = std::min(ra, rb);
-            any = true;
-          }
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        const std::pair<std::array<std::int64_t, 3>, int> lo{{c.x + dx, c.y + dy, c.z - 1}, -1};
+        const std::array<std::int64_t, 3> hi{c.x + dx, c.y + dy, c.z + 1};
+        for (auto it = std::lower_bound(cells.begin(), cells.end(), lo); it != cells.end() && it->first <= hi; ++it) {
+          const int w = it->second;
+          if (uz(w) <= v || (m.vertices[uz(w)] - p).norm() > tol) continue;
+          close[v] = close[uz(w)] = 1;
+          const int ra = find(static_cast<int>(v)), rb = find(w);
+          if (ra != rb) parent[uz(std::max(ra, rb))] = std::min(ra, rb);
+          any = true;
         }
+      }
   }
   if (!any) return true;
   auto around = [](const TriMesh& mesh, const std::vector<char>& mark) {
@@ -388,16 +442,22 @@ void canonicalize(TriMesh& m) {
 }
 
 namespace {
-TriMesh weld_soup(const std::vector<std::array<Vec3, 3>>& soup, double tol, StitchReport& rep);
+TriMesh finish_weld(TriMesh exact, double tol, StitchReport& rep);
 }  // namespace
 
 TriMesh stitch_zones(const Partition& part, const std::vector<TriMesh>& solids, double tol, StitchReport* report) {
   StitchReport rep;
   std::map<std::array<int, 4>, FaceBucket> buckets;  // (axis, layer, cell_u, cell_v)
-  std::vector<std::array<Vec3, 3>> soup;
+  // The kept triangles go straight into the welder (each zone vertex hashed once), in the order
+  // of the soup they form: zones in order, then the caps.
+  std::size_t total = 0;
+  for (std::size_t zi = 0; zi < part.zones.size() && zi < solids.size(); ++zi) total += solids[zi].vertices.size();
+  ExactWelder welder(total);
+  std::vector<int> index;
   for (std::size_t zi = 0; zi < part.zones.size() && zi < solids.size(); ++zi) {
     const Zone& z = part.zones[zi];
     const TriMesh& s = solids[zi];
+    index.assign(s.vertices.size(), -1);
     for (const auto& f : s.faces) {
       const std::array<Vec3, 3> t{s.vertices[uz(f[0])], s.vertices[uz(f[1])], s.vertices[uz(f[2])]};
       int face = -1;
@@ -411,7 +471,13 @@ TriMesh stitch_zones(const Partition& part, const std::vector<TriMesh>& solids, 
         }
       }
       if (face < 0 || z.on_box[uz(face)]) {
-        soup.push_back(t);
+        std::array<int, 3> g{};
+        for (std::size_t i = 0; i < 3; ++i) {
+          int& v = index[uz(f[i])];
+          if (v < 0) v = welder.vertex(t[i]);
+          g[i] = v;
+        }
+        welder.face(g[0], g[1], g[2]);
         continue;
       }
       const int a = face / 2, side = face % 2;
@@ -424,8 +490,10 @@ TriMesh stitch_zones(const Partition& part, const std::vector<TriMesh>& solids, 
       ++rep.face_triangles_removed;
     }
   }
-  for (const auto& [key, b] : buckets) rep.cap_triangles_kept += cap_xor(b, soup);
-  TriMesh m = weld_soup(soup, tol, rep);
+  std::vector<std::array<Vec3, 3>> caps;
+  for (const auto& [key, b] : buckets) rep.cap_triangles_kept += cap_xor(b, caps);
+  for (const auto& t : caps) welder.triangle(t);
+  TriMesh m = finish_weld(std::move(welder.mesh), tol, rep);
   if (report) *report = rep;
   return m;
 }
@@ -466,23 +534,21 @@ TriMesh stitch_polyhedral_zones(const PolyPartition& part, const std::vector<Tri
     }
   }
   for (const auto& [key, b] : buckets) rep.cap_triangles_kept += cap_xor(b, soup);
-  TriMesh m = weld_soup(soup, tol, rep);
+  ExactWelder welder(soup.size() * 3);
+  for (const auto& t : soup) welder.triangle(t);
+  TriMesh m = finish_weld(std::move(welder.mesh), tol, rep);
   if (report) *report = rep;
   return m;
 }
 
 namespace {
 
-TriMesh weld_soup(const std::vector<std::array<Vec3, 3>>& soup, double tol, StitchReport& rep) {
-  TriMesh m;
-  m.vertices.reserve(soup.size() * 3);
-  for (const auto& t : soup) {
-    const int base = static_cast<int>(m.vertices.size());
-    m.vertices.insert(m.vertices.end(), t.begin(), t.end());
-    m.faces.push_back({base, base + 1, base + 2});
-  }
-  m = weld_vertices(m, tol);
-  rep.t_junctions_split = split_t_junctions(m, tol);
+// Near merges, T-junctions and canonical order of a mesh whose identical points are merged.
+TriMesh finish_weld(TriMesh exact, double tol, StitchReport& rep) {
+  // A closed mesh has no boundary edge for a T-junction to lie on.
+  bool closed = false;
+  TriMesh m = weld_near(std::move(exact), tol, &closed);
+  rep.t_junctions_split = closed ? 0 : split_t_junctions(m, tol);
   canonicalize(m);
   return m;
 }

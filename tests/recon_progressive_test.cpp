@@ -11,6 +11,8 @@
 #include "modeling/mesh_queries.h"
 #include "modeling/progressive_reconstructor.h"
 #include "modeling/reconstruct.h"
+#include "modeling/section_validate.h"
+#include "modeling/zone_partition.h"
 #include "tests/recon_synthetic.h"
 
 namespace ps {
@@ -113,6 +115,44 @@ TEST(ReconProgressive, FarSectionLeavesDistantZonesBitIdentical) {
   const auto a = far(*before), b = far(*after);
   EXPECT_FALSE(a.empty());
   EXPECT_TRUE(a == b);
+}
+
+// The clipping cache: a partition built with the clippings of another set is the fresh one.
+// The added plane x = -1.5 lies below every other region's cells along x, so the cached
+// clippings of the y and z sections come back with cell indices shifted by one.
+TEST(ReconProgressive, CachedClippingsGiveTheFreshPartition) {
+  const SectionSet s = five_sections();
+  SectionSet t = s;
+  testing::add_circle(t, 0, -1.5, 0.0, 0.0, 0.2, 24);
+  Box3 box;
+  box.min = Vec3::Constant(-2.0);
+  box.max = Vec3::Constant(2.0);
+  const auto vs = validate_sections(s);
+  const auto vt = validate_sections(t);
+  ASSERT_TRUE(vs) << vs.message();
+  ASSERT_TRUE(vt) << vt.message();
+  ClipCache first, second;
+  ASSERT_TRUE(partition_zones(*vs, box, nullptr, &first));
+  const auto cached = partition_zones(*vt, box, &first, &second);
+  const auto fresh = partition_zones(*vt, box);
+  ASSERT_TRUE(cached);
+  ASSERT_TRUE(fresh);
+  int reused = 0;
+  for (const auto& [hash, entry] : second.entries) reused += first.find(hash, entry.first) != nullptr ? 1 : 0;
+  EXPECT_EQ(reused, static_cast<int>(vs->regions.size()));
+  ASSERT_EQ(cached->pieces.size(), fresh->pieces.size());
+  for (std::size_t i = 0; i < fresh->pieces.size(); ++i) {
+    const SectionPiece &a = cached->pieces[i], &b = fresh->pieces[i];
+    EXPECT_EQ(a.plane, b.plane);
+    EXPECT_EQ(a.layer, b.layer);
+    EXPECT_EQ(a.cell, b.cell);
+    EXPECT_TRUE(a.loops == b.loops) << "piece " << i;
+  }
+  ASSERT_EQ(cached->zones.size(), fresh->zones.size());
+  for (std::size_t z = 0; z < fresh->zones.size(); ++z) {
+    EXPECT_EQ(cached->zones[z].face_pieces, fresh->zones[z].face_pieces) << "zone " << z;
+    EXPECT_EQ(cached->zones[z].type, fresh->zones[z].type) << "zone " << z;
+  }
 }
 
 TEST(ReconProgressive, EditAndDeleteRecomputeOnlyAffectedZones) {
