@@ -367,20 +367,11 @@ SectionSet sections_from(const json& j, const std::string& path) {
 }
 
 TopologyEdit edit_from(const json& j, const std::string& path) {
-  const json& o = object(j, path, {"kind", "stroke"});
-  TopologyEdit e;
-  const std::string kind = string(field(o, path, "kind"), path + ".kind");
-  if (kind == "join")
-    e.kind = TopologyEditKind::kJoin;
-  else if (kind == "split")
-    e.kind = TopologyEditKind::kSplit;
-  else
-    throw Bad{path + ".kind", "must be \"join\" or \"split\" (found \"" + kind + "\")"};
-  const std::string sp = path + ".stroke";
-  const json& a = array(field(o, path, "stroke"), sp);
-  if (a.size() < 2) throw Bad{sp, "must have at least 2 points"};
-  for (std::size_t i = 0; i < a.size(); ++i) e.stroke.push_back(vec_n<3>(a[i], at_index(sp, i)));
-  return e;
+  object(j, path, {"kind", "stroke"});
+  std::string where;
+  auto e = topology_edit_from_json(j, &where);
+  if (!e) throw Bad{where.empty() ? path : path + "." + where, e.message()};
+  return std::move(*e);
 }
 
 TriMesh base_from(const json& j, const std::string& path) {
@@ -462,11 +453,7 @@ std::string session_to_json(const SessionParams& params, const SessionState& sta
   // Written only when there are some: files without topology edits stay as they were.
   if (!state.edits.empty()) {
     json edits = json::array();
-    for (const auto& e : state.edits) {
-      json stroke = json::array();
-      for (const auto& p : e.stroke) stroke.push_back(vec(p));
-      edits.push_back({{"kind", topology_edit_name(e.kind)}, {"stroke", std::move(stroke)}});
-    }
+    for (const auto& e : state.edits) edits.push_back(topology_edit_to_json(e));
     j["edits"] = std::move(edits);
   }
   if (mesh_file.empty() || state.model.empty()) {

@@ -216,7 +216,7 @@ Status check_stroke(const TopologyEdit& e) {
 }
 
 // === Join
-Status join(const Partition& part, std::vector<ZonePrimitives>& prims, const TopologyEdit& e, std::vector<int>* touched) {
+Status join(const Partition& part, std::vector<ZonePrimitives>& prims, const TopologyEdit& e) {
   PrimRef a = nearest_body_prism(prims, e.stroke.front());
   PrimRef b = nearest_body_prism(prims, e.stroke.back());
   if (a.first < 0 || b.first < 0) return Status::error("join: there is no frustum of a body zone to join");
@@ -252,7 +252,6 @@ Status join(const Partition& part, std::vector<ZonePrimitives>& prims, const Top
       shear_top(final_mesh, ia, (static_cast<double>(s) / kSteps) * d);
       if (!top_inside(final_mesh, ia, z)) continue;
       zp.solids[uz(a.second)] = std::move(final_mesh);
-      if (touched) touched->push_back(a.first);
       return Status::ok();
     }
   }
@@ -260,7 +259,7 @@ Status join(const Partition& part, std::vector<ZonePrimitives>& prims, const Top
 }
 
 // === Split
-Status split(const Partition& part, std::vector<ZonePrimitives>& prims, const TopologyEdit& e, std::vector<int>* touched) {
+Status split(const Partition& part, std::vector<ZonePrimitives>& prims, const TopologyEdit& e) {
   // The stroke's middle by arc length.
   double len = 0;
   for (std::size_t i = 1; i < e.stroke.size(); ++i) len += (e.stroke[i] - e.stroke[i - 1]).norm();
@@ -311,10 +310,7 @@ Status split(const Partition& part, std::vector<ZonePrimitives>& prims, const To
     for (std::size_t i = 0; i < shrunk.size() && apart; ++i)
       for (std::size_t j = i + 1; j < shrunk.size() && apart; ++j) apart = !overlap(shrunk[i], shrunk[j]);
     if (!apart) continue;
-    for (const auto& [zi, pi] : change) {
-      shrink_top(prims[uz(zi)].solids[uz(pi)], prims[uz(zi)].info[uz(pi)], s);
-      if (touched) touched->push_back(zi);
-    }
+    for (const auto& [zi, pi] : change) shrink_top(prims[uz(zi)].solids[uz(pi)], prims[uz(zi)].info[uz(pi)], s);
     return Status::ok();
   }
   return Status::error("split: the frusta do not separate even when shrunk to a tenth of their height");
@@ -323,6 +319,41 @@ Status split(const Partition& part, std::vector<ZonePrimitives>& prims, const To
 }  // namespace
 
 const char* topology_edit_name(TopologyEditKind kind) { return kind == TopologyEditKind::kJoin ? "join" : "split"; }
+
+Result<TopologyEdit> topology_edit_from_json(const nlohmann::json& e, std::string* where) {
+  using R = Result<TopologyEdit>;
+  auto fail = [&](std::string field, std::string what) {
+    if (where) *where = std::move(field);
+    return R::error(std::move(what));
+  };
+  if (!e.is_object() || !e.contains("kind") || !e["kind"].is_string())
+    return fail("", "expected an object with a string \"kind\"");
+  TopologyEdit te;
+  const std::string kind = e["kind"].get<std::string>();
+  if (kind == "join")
+    te.kind = TopologyEditKind::kJoin;
+  else if (kind == "split")
+    te.kind = TopologyEditKind::kSplit;
+  else
+    return fail("kind", "\"" + kind + "\" is neither \"join\" nor \"split\"");
+  if (!e.contains("stroke") || !e["stroke"].is_array()) return fail("", "expected an array \"stroke\"");
+  for (std::size_t k = 0; k < e["stroke"].size(); ++k) {
+    const auto& p = e["stroke"][k];
+    const std::string at = "stroke[" + std::to_string(k) + "]";
+    if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() || !p[2].is_number())
+      return fail(at, "expected [x, y, z]");
+    te.stroke.emplace_back(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+    if (!te.stroke.back().allFinite()) return fail(at, "not a finite point");
+  }
+  if (Status st = check_stroke(te); !st) return fail("", st.message());
+  return te;
+}
+
+nlohmann::json topology_edit_to_json(const TopologyEdit& e) {
+  nlohmann::json stroke = nlohmann::json::array();
+  for (const auto& p : e.stroke) stroke.push_back({p.x(), p.y(), p.z()});
+  return {{"kind", topology_edit_name(e.kind)}, {"stroke", std::move(stroke)}};
+}
 
 Result<std::vector<TopologyEdit>> parse_topology_edits(const std::string& text) {
   using R = Result<std::vector<TopologyEdit>>;
@@ -336,57 +367,25 @@ Result<std::vector<TopologyEdit>> parse_topology_edits(const std::string& text) 
     return R::error("edits: expected an object with an array \"edits\"");
   std::vector<TopologyEdit> out;
   for (std::size_t i = 0; i < j["edits"].size(); ++i) {
-    const auto& e = j["edits"][i];
-    const std::string where = "edits[" + std::to_string(i) + "]";
-    if (!e.is_object() || !e.contains("kind") || !e["kind"].is_string())
-      return R::error(where + ": expected an object with a string \"kind\"");
-    TopologyEdit te;
-    const std::string kind = e["kind"].get<std::string>();
-    if (kind == "join")
-      te.kind = TopologyEditKind::kJoin;
-    else if (kind == "split")
-      te.kind = TopologyEditKind::kSplit;
-    else
-      return R::error(where + ".kind: \"" + kind + "\" is neither \"join\" nor \"split\"");
-    if (!e.contains("stroke") || !e["stroke"].is_array()) return R::error(where + ": expected an array \"stroke\"");
-    for (std::size_t k = 0; k < e["stroke"].size(); ++k) {
-      const auto& p = e["stroke"][k];
-      if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() || !p[2].is_number())
-        return R::error(where + ".stroke[" + std::to_string(k) + "]: expected [x, y, z]");
-      te.stroke.emplace_back(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
-      if (!te.stroke.back().allFinite())
-        return R::error(where + ".stroke[" + std::to_string(k) + "]: not a finite point");
-    }
-    if (Status st = check_stroke(te); !st) return R::error(where + ": " + st.message());
-    out.push_back(std::move(te));
+    std::string field;
+    auto e = topology_edit_from_json(j["edits"][i], &field);
+    if (!e)
+      return R::error("edits[" + std::to_string(i) + "]" + (field.empty() ? "" : "." + field) + ": " + e.message());
+    out.push_back(std::move(*e));
   }
   return out;
 }
 
 std::string format_topology_edits(const std::vector<TopologyEdit>& edits) {
   nlohmann::json arr = nlohmann::json::array();
-  for (const auto& e : edits) {
-    nlohmann::json stroke = nlohmann::json::array();
-    for (const auto& p : e.stroke) stroke.push_back({p.x(), p.y(), p.z()});
-    arr.push_back({{"kind", topology_edit_name(e.kind)}, {"stroke", stroke}});
-  }
+  for (const auto& e : edits) arr.push_back(topology_edit_to_json(e));
   return nlohmann::json{{"edits", arr}}.dump(2) + "\n";
 }
 
-Status apply_topology_edit(const Partition& part, std::vector<ZonePrimitives>& prims, const TopologyEdit& edit,
-                           std::vector<int>* touched) {
+// join and split write to `prims` only once they have succeeded, so a refusal leaves it as it was.
+Status apply_topology_edit(const Partition& part, std::vector<ZonePrimitives>& prims, const TopologyEdit& edit) {
   if (Status s = check_stroke(edit); !s) return s;
-  std::vector<ZonePrimitives> work = prims;
-  std::vector<int> t;
-  Status s = edit.kind == TopologyEditKind::kJoin ? join(part, work, edit, &t) : split(part, work, edit, &t);
-  if (!s) return s;
-  prims = std::move(work);
-  if (touched) {
-    std::sort(t.begin(), t.end());
-    t.erase(std::unique(t.begin(), t.end()), t.end());
-    touched->insert(touched->end(), t.begin(), t.end());
-  }
-  return Status::ok();
+  return edit.kind == TopologyEditKind::kJoin ? join(part, prims, edit) : split(part, prims, edit);
 }
 
 }  // namespace ps

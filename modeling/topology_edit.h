@@ -22,6 +22,7 @@
 // the reason: a join whose parts lie in different zones (the zone chain of 6.4 is not built), a
 // join or split that would move a prism reaching a side face or continuing into an end zone,
 // a stroke over no body zone, a part of a single prism.
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -40,9 +41,8 @@ struct TopologyEdit {
 };
 
 // Applies one edit to `prims` (as built by build_cylinders on `part`, with their info). On error
-// `prims` is unchanged. `touched` (optional) receives the zones whose primitives changed.
-Status apply_topology_edit(const Partition& part, std::vector<ZonePrimitives>& prims, const TopologyEdit& edit,
-                           std::vector<int>* touched = nullptr);
+// `prims` is unchanged.
+Status apply_topology_edit(const Partition& part, std::vector<ZonePrimitives>& prims, const TopologyEdit& edit);
 
 // "join" / "split".
 const char* topology_edit_name(TopologyEditKind kind);
@@ -51,6 +51,11 @@ const char* topology_edit_name(TopologyEditKind kind);
 //   {"edits": [{"kind": "join" | "split", "stroke": [[x, y, z], ...]}, ...]}
 // Errors name the edit index and the field.
 Result<std::vector<TopologyEdit>> parse_topology_edits(const std::string& text);
+// One edit's object {"kind": ..., "stroke": ...}, shared by the edits file and session files'
+// "edits". On error `where` (when given) receives the failing field relative to the object
+// ("kind", "stroke[3]"; empty for the object itself). Other keys are not looked at.
+Result<TopologyEdit> topology_edit_from_json(const nlohmann::json& j, std::string* where = nullptr);
+nlohmann::json topology_edit_to_json(const TopologyEdit& edit);
 std::string format_topology_edits(const std::vector<TopologyEdit>& edits);
 
 }  // namespace ps
