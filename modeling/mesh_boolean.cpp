@@ -15,6 +15,7 @@
 
 #include "modeling/face_intersections.h"
 #include "modeling/mesh_topology.h"
+#include "modeling/zone_stitch.h"
 
 namespace ps {
 namespace {
@@ -366,28 +367,45 @@ std::vector<int> faces_not_in(const TriMesh& result, const TriMesh& a) {
   return out;
 }
 
-}  // namespace
-
-Status check_solid(const TriMesh& m, const char* which) {
-  if (m.faces.empty()) return Status::error(std::string(which) + " is empty");
-  for (const auto& v : m.vertices)
-    if (!v.allFinite()) return Status::error(std::string(which) + " has a non-finite coordinate");
+// Rounding the exact result to doubles can leave a constructed point within a few 1e-16 of a
+// vertex whose fans then cross (sculpt_bench's tunnel centred on the sphere's pole: two vertices
+// 1.8e-16 apart). Vertices closer than 1e-9 of the result's diagonal whose faces cross are
+// merged (repair_close_vertices), an operand's vertex kept where one of the two is (it does not
+// move: the vertices are renumbered so operand vertices come first and the smallest index
+// wins), and the whole test is repeated. Returns false, leaving `m` unspecified, when a
+// crossing remains or the merge breaks the topology.
+bool merge_rounded_neighbours(TriMesh& m, const TriMesh& a, const TriMesh& b) {
+  auto key = [](const Vec3& p) { return std::array<double, 3>{p.x(), p.y(), p.z()}; };
+  std::vector<std::array<double, 3>> inputs;
+  inputs.reserve(a.vertices.size() + b.vertices.size());
+  for (const auto& p : a.vertices) inputs.push_back(key(p));
+  for (const auto& p : b.vertices) inputs.push_back(key(p));
+  std::sort(inputs.begin(), inputs.end());
+  std::vector<int> order(m.vertices.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::stable_partition(order.begin(), order.end(), [&](int v) {
+    return std::binary_search(inputs.begin(), inputs.end(), key(m.vertices[static_cast<std::size_t>(v)]));
+  });
+  TriMesh r;
+  r.vertices.reserve(m.vertices.size());
+  std::vector<int> index(m.vertices.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    index[static_cast<std::size_t>(order[i])] = static_cast<int>(i);
+    r.vertices.push_back(m.vertices[static_cast<std::size_t>(order[i])]);
+  }
+  r.faces.reserve(m.faces.size());
   for (const auto& f : m.faces)
-    for (int c : f)
-      if (c < 0 || static_cast<std::size_t>(c) >= m.vertices.size())
-        return Status::error(std::string(which) + " has a face index out of range");
-  const MeshTopology t = mesh_topology(m);
-  if (!t.closed || !t.manifold() || !t.consistently_oriented)
-    return Status::error(std::string(which) + " is not a closed, oriented 2-manifold (" + t.problem + ")");
-  if (!(t.signed_volume > 0)) return Status::error(std::string(which) + " is inside out (negative volume)");
-  // The solid is a valid halfedge mesh (checked above), so the face-pair test needs no soup
-  // repair first (what does_self_intersect does for arbitrary soups); same predicates.
-  std::vector<int> all(m.faces.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-  if (!intersecting_face_pairs(m.vertices, m.faces, all).empty())
-    return Status::error(std::string(which) + " intersects itself");
-  return Status::ok();
+    r.faces.push_back({index[static_cast<std::size_t>(f[0])], index[static_cast<std::size_t>(f[1])],
+                       index[static_cast<std::size_t>(f[2])]});
+  if (!repair_close_vertices(r, 1e-9 * bounding_box(r.vertices).diagonal())) return false;
+  const MeshTopology t = mesh_topology(r);
+  if (!t.closed || !t.manifold() || !t.consistently_oriented || t.degenerate_faces > 0) return false;
+  if (!intersecting_face_pairs(r.vertices, r.faces, faces_not_in(r, a)).empty()) return false;
+  m = std::move(r);
+  return true;
 }
+
+}  // namespace
 
 Result<TriMesh> mesh_boolean(const TriMesh& a, const TriMesh& b, BooleanOp op, bool checked_a) {
   if (!checked_a)
@@ -410,8 +428,16 @@ Result<TriMesh> mesh_boolean(const TriMesh& a, const TriMesh& b, BooleanOp op, b
   // Rounding the exact result to doubles can, in near-degenerate spots, fold a sliver. Faces of
   // `a` that came through unchanged (same corners, bit for bit) were already free of
   // intersections among themselves, so only the other faces need testing, against all faces.
-  if (!intersecting_face_pairs(m.vertices, m.faces, faces_not_in(m, a)).empty())
-    return Result<TriMesh>::error("Boolean operation refused: the rounded result intersects itself");
+  if (!intersecting_face_pairs(m.vertices, m.faces, faces_not_in(m, a)).empty()) {
+    if (!merge_rounded_neighbours(m, a, b))
+      return Result<TriMesh>::error("Boolean operation refused: the rounded result intersects itself");
+  }
+  // Closed, oriented and free of self-intersections (the faces kept from `a` among themselves,
+  // every other face against all): what check_solid asks, once the topology agrees.
+  if (!m.faces.empty()) {
+    const MeshTopology t = mesh_topology(m);
+    if (t.closed && t.manifold() && t.consistently_oriented && t.signed_volume > 0) remember_checked_solid(m);
+  }
   return m;
 }
 

@@ -8,15 +8,12 @@
 // outward-oriented; it may be empty (a difference that removes everything) or have several
 // components. Every input vertex that ends on the result keeps its exact coordinates.
 #include "modeling/mesh.h"
+#include "modeling/solid_check.h"  // check_solid: the operand check
 #include "modeling/status.h"
 
 namespace ps {
 
 enum class BooleanOp { kUnion, kDifference, kIntersection };
-
-// The operand check of mesh_boolean: closed, oriented 2-manifold, positive volume, finite, no
-// self-intersection. `which` names the operand in the message.
-Status check_solid(const TriMesh& m, const char* which);
 
 // a op b (kDifference: a minus b). `checked_a`: the caller has already passed `a` through
 // check_solid (repeated operations on one model check it once).

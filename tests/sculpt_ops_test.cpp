@@ -103,6 +103,57 @@ TEST(MeshBoolean, RefusesOperandsThatAreNotSolids) {
   EXPECT_FALSE(mesh_boolean(TriMesh{}, sphere(), BooleanOp::kUnion));
 }
 
+// Rounding the exact difference leaves a constructed point 1.8e-16 from a sphere vertex whose
+// fans cross (a circle centred on the pole of a 100 x 100 UV sphere, seen along the pole: the
+// tool's walls pass through the model's vertices up to rounding). The two are merged, keeping
+// the model's vertex, instead of refusing the result.
+TEST(MeshBoolean, MergesRoundedNeighboursKeepingTheOperandVertex) {
+  const TriMesh model = testing::uv_sphere(Vec3::Zero(), 1.0, 100, 100);
+  Camera cam = front_camera();
+  cam.up = Vec3(0, 1, 0);
+  Camera along_pole = cam;
+  along_pole.eye = Vec3(0, 4, 0);
+  along_pole.up = Vec3(0, 0, -1);
+  for (const Camera& c : {cam, along_pole}) {
+    const DepthRange d = depth_range(model, c);
+    auto tool = extrude_window_polygon(circle_px(Vec2(320, 240), 50), c, d.min, d.max);
+    ASSERT_TRUE(tool) << tool.message();
+    auto out = mesh_boolean(model, *tool, BooleanOp::kDifference);
+    ASSERT_TRUE(out) << out.message();
+    expect_valid(*out);
+    EXPECT_EQ(mesh_topology(*out).genus, 1);
+    // No vertex of the result lies within rounding distance of an operand vertex without being
+    // that vertex bit for bit.
+    std::vector<Vec3> inputs = model.vertices;
+    inputs.insert(inputs.end(), tool->vertices.begin(), tool->vertices.end());
+    for (const Vec3& v : out->vertices)
+      for (const Vec3& p : inputs) {
+        const double dist = (v - p).norm();
+        if (dist > 0 && dist < 1e-12) ADD_FAILURE() << "vertex " << v.transpose() << " is " << dist << " from an operand vertex";
+      }
+  }
+}
+
+// A solid remembered as checked is recognised bit for bit only: any other mesh, however close,
+// is checked in full.
+TEST(SolidCheck, TheMemoNeverChangesTheAnswer) {
+  const TriMesh good = testing::uv_sphere(Vec3::Zero(), 1.0, 24, 48);
+  ASSERT_GE(good.faces.size(), 1000u);
+  ASSERT_TRUE(check_solid(good, "the model"));
+  remember_checked_solid(good);
+  ASSERT_TRUE(check_solid(good, "the model"));
+  TriMesh pierced = good;
+  pierced.vertices[200] = -1.6 * pierced.vertices[200];  // pushed through the far side
+  const Status s = check_solid(pierced, "the model");
+  ASSERT_FALSE(s);
+  EXPECT_NE(s.message().find("intersects itself"), std::string::npos) << s.message();
+  TriMesh flipped = good;
+  for (auto& f : flipped.faces) std::swap(f[1], f[2]);
+  EXPECT_FALSE(check_solid(flipped, "the model"));
+  forget_checked_solids();
+  EXPECT_TRUE(check_solid(good, "the model"));
+}
+
 // === Cutting
 TEST(SculptCut, KeepsOneComponentOnTheUnmarkedSide) {
   const Camera cam = front_camera();

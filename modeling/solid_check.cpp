@@ -1,0 +1,107 @@
+#include "modeling/solid_check.h"
+
+#include <cstdint>
+#include <cstring>
+#include <deque>
+#include <mutex>
+#include <string>
+
+#include "modeling/face_intersections.h"
+#include "modeling/mesh_topology.h"
+
+namespace ps {
+namespace {
+
+// === Memo of checked solids
+// Only solids this large are remembered (frusta and prisms are checked by the hundred and are
+// cheap; copying them into the memo would cost more than it saves).
+constexpr std::size_t kMemoMinFaces = 1000;
+constexpr std::size_t kMemoEntries = 4;
+
+std::uint64_t content_hash(const TriMesh& m) {
+  // FNV-1a over the raw coordinates and indices.
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  };
+  for (const auto& v : m.vertices) {
+    const double c[3] = {v.x(), v.y(), v.z()};
+    mix(c, sizeof c);
+  }
+  for (const auto& f : m.faces) mix(f.data(), sizeof(int) * 3);
+  return h;
+}
+
+bool identical(const TriMesh& a, const TriMesh& b) {
+  if (a.vertices.size() != b.vertices.size() || a.faces.size() != b.faces.size()) return false;
+  for (std::size_t i = 0; i < a.vertices.size(); ++i)
+    if (std::memcmp(a.vertices[i].data(), b.vertices[i].data(), sizeof(double) * 3) != 0) return false;
+  return a.faces == b.faces;
+}
+
+struct Memo {
+  std::mutex mutex;
+  std::deque<std::pair<std::uint64_t, TriMesh>> entries;  // newest first
+};
+
+Memo& memo() {
+  static Memo m;
+  return m;
+}
+
+bool remembered(const TriMesh& m, std::uint64_t h) {
+  Memo& mm = memo();
+  std::lock_guard<std::mutex> lock(mm.mutex);
+  for (const auto& [key, mesh] : mm.entries)
+    if (key == h && identical(mesh, m)) return true;
+  return false;
+}
+
+void remember(const TriMesh& m, std::uint64_t h) {
+  Memo& mm = memo();
+  std::lock_guard<std::mutex> lock(mm.mutex);
+  for (const auto& [key, mesh] : mm.entries)
+    if (key == h && identical(mesh, m)) return;
+  mm.entries.emplace_front(h, m);
+  if (mm.entries.size() > kMemoEntries) mm.entries.pop_back();
+}
+
+}  // namespace
+
+Status check_solid(const TriMesh& m, const char* which) {
+  if (m.faces.empty()) return Status::error(std::string(which) + " is empty");
+  const bool memoable = m.faces.size() >= kMemoMinFaces;
+  const std::uint64_t h = memoable ? content_hash(m) : 0;
+  if (memoable && remembered(m, h)) return Status::ok();
+  for (const auto& v : m.vertices)
+    if (!v.allFinite()) return Status::error(std::string(which) + " has a non-finite coordinate");
+  for (const auto& f : m.faces)
+    for (int c : f)
+      if (c < 0 || static_cast<std::size_t>(c) >= m.vertices.size())
+        return Status::error(std::string(which) + " has a face index out of range");
+  const MeshTopology t = mesh_topology(m);
+  if (!t.closed || !t.manifold() || !t.consistently_oriented)
+    return Status::error(std::string(which) + " is not a closed, oriented 2-manifold (" + t.problem + ")");
+  if (!(t.signed_volume > 0)) return Status::error(std::string(which) + " is inside out (negative volume)");
+  // The solid is a valid halfedge mesh (checked above), so the face-pair test needs no soup
+  // repair first (what does_self_intersect does for arbitrary soups); same predicates.
+  std::vector<int> all(m.faces.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  if (!intersecting_face_pairs(m.vertices, m.faces, all).empty())
+    return Status::error(std::string(which) + " intersects itself");
+  if (memoable) remember(m, h);
+  return Status::ok();
+}
+
+void remember_checked_solid(const TriMesh& m) {
+  if (m.faces.size() >= kMemoMinFaces) remember(m, content_hash(m));
+}
+
+void forget_checked_solids() {
+  Memo& mm = memo();
+  std::lock_guard<std::mutex> lock(mm.mutex);
+  mm.entries.clear();
+}
+
+}  // namespace ps
