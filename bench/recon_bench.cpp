@@ -68,6 +68,7 @@ int main(int argc, char** argv) {
     pr.set_box(box);
     if (!pr.update(model)) return;
     std::vector<double> add_ms, remove_ms, recomputed;
+    std::vector<double> s_validate, s_partition, s_primitives, s_union, s_stitch;
     for (int r = 0; r < reps * 3; ++r) {
       ReconstructReport a;
       auto m = pr.update(extra_plane_set, &a);
@@ -76,6 +77,11 @@ int main(int argc, char** argv) {
         return;
       }
       add_ms.push_back(a.timings.total_ms);
+      s_validate.push_back(a.timings.validate_ms);
+      s_partition.push_back(a.timings.partition_ms);
+      s_primitives.push_back(a.timings.primitives_ms);
+      s_union.push_back(a.timings.union_ms);
+      s_stitch.push_back(a.timings.stitch_ms);
       recomputed.push_back(a.zones_recomputed);
       ReconstructReport b;
       if (!pr.update(model, &b)) return;
@@ -84,6 +90,9 @@ int main(int argc, char** argv) {
     std::printf("progressive add (%s): median %.1f ms, p95 %.1f ms, zones recomputed %.0f; remove: median %.1f ms\n",
                 what, percentile(add_ms, 0.5), percentile(add_ms, 0.95), percentile(recomputed, 0.5),
                 percentile(remove_ms, 0.5));
+    std::printf("  add, stage medians (ms): validate %.1f  partition %.1f  primitives %.1f  union %.1f  stitch and checks %.1f\n",
+                percentile(s_validate, 0.5), percentile(s_partition, 0.5), percentile(s_primitives, 0.5),
+                percentile(s_union, 0.5), percentile(s_stitch, 0.5));
   };
   SectionSet on_existing = model;
   testing::add_circle(on_existing, 2, 0.02, 1.35, 1.35, 0.25, 32);

@@ -112,29 +112,20 @@ MeshTopology mesh_topology(const TriMesh& mesh) {
     if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2] || !(area2 > area_eps)) ++t.degenerate_faces;
   }
 
-  // === Edges: undirected incidence and directed uniqueness (sorted keys, runs counted)
-  const auto undirected = sorted_undirected_edges(mesh);
+  // === Edges, vertex fans and components from the faces around each vertex
+  // Incident faces in compressed rows. Around vertex v, every face gives two spokes (the other
+  // two corners w, and whether the face runs v -> w); sorted, the spokes to one neighbour w are
+  // adjacent. For w > v they are the half-edges of the undirected edge {v, w}: one is a
+  // boundary edge, more than two a non-manifold edge, two running the same way an orientation
+  // clash; and the faces sharing it are joined into one component. Two faces of v's fan are
+  // joined when they share a neighbour w; more than one fan is a non-manifold vertex. (One
+  // pass of small sorts instead of sorting every edge of the mesh; faces with a repeated corner
+  // take the general path below.)
+  bool repeated_corner = false;
+  for (const auto& f : mesh.faces)
+    if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) repeated_corner = true;
   long distinct_edges = 0;
-  // A directed edge repeats when two half-edges of one undirected edge run the same way.
   bool dir_ok = true;
-  for (std::size_t i = 0; i < undirected.size();) {
-    std::size_t j = i + 1;
-    while (j < undirected.size() && undirected[j].first == undirected[i].first) ++j;
-    ++distinct_edges;
-    if (j - i == 1) ++t.boundary_edges;
-    if (j - i > 2) ++t.nonmanifold_edges;
-    int ways[2] = {0, 0};
-    for (std::size_t e = i; e < j; ++e) ++ways[undirected[e].second & 1];
-    if (ways[0] > 1 || ways[1] > 1) dir_ok = false;
-    i = j;
-  }
-  t.closed = t.boundary_edges == 0 && nf > 0;
-  t.edge_manifold = t.nonmanifold_edges == 0;
-  t.consistently_oriented = dir_ok;
-
-  // === Vertex manifoldness: the faces around a vertex are connected through shared edges
-  // into a single fan (checked with a union-find over the incident faces). Incident faces in
-  // compressed rows; two faces of a fan are joined when they share a neighbour vertex.
   std::vector<int> start(nv + 1, 0);
   for (const auto& f : mesh.faces)
     for (int v : f) ++start[static_cast<std::size_t>(v) + 1];
@@ -145,8 +136,9 @@ MeshTopology mesh_topology(const TriMesh& mesh) {
     for (std::size_t fi = 0; fi < nf; ++fi)
       for (int v : mesh.faces[fi]) incident[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<int>(fi);
   }
+  DisjointSets face_sets(nf);
   long referenced_vertices = 0;
-  std::vector<std::array<int, 3>> spokes;  // (neighbour vertex, local face) pairs of one vertex
+  std::vector<std::array<int, 3>> spokes;  // (neighbour vertex, local face, runs v -> w) of one vertex
   std::vector<int> local_parent;
   for (std::size_t v = 0; v < nv; ++v) {
     const auto b = static_cast<std::size_t>(start[v]), e = static_cast<std::size_t>(start[v + 1]);
@@ -156,9 +148,12 @@ MeshTopology mesh_topology(const TriMesh& mesh) {
     }
     ++referenced_vertices;
     spokes.clear();
-    for (std::size_t i = b; i < e; ++i)
-      for (int w : mesh.faces[static_cast<std::size_t>(incident[i])])
-        if (w != static_cast<int>(v)) spokes.push_back({w, static_cast<int>(i - b), 0});
+    for (std::size_t i = b; i < e; ++i) {
+      const auto& f = mesh.faces[static_cast<std::size_t>(incident[i])];
+      for (std::size_t k = 0; k < 3; ++k)
+        if (f[k] != static_cast<int>(v))
+          spokes.push_back({f[k], static_cast<int>(i - b), f[(k + 2) % 3] == static_cast<int>(v) ? 1 : 0});
+    }
     std::sort(spokes.begin(), spokes.end());
     local_parent.resize(e - b);
     std::iota(local_parent.begin(), local_parent.end(), 0);
@@ -167,18 +162,60 @@ MeshTopology mesh_topology(const TriMesh& mesh) {
           local_parent[static_cast<std::size_t>(local_parent[static_cast<std::size_t>(x)])];
       return x;
     };
-    for (std::size_t i = 1; i < spokes.size(); ++i)
-      if (spokes[i][0] == spokes[i - 1][0]) local_parent[static_cast<std::size_t>(find(spokes[i][1]))] = find(spokes[i - 1][1]);
+    for (std::size_t i = 0; i < spokes.size();) {
+      std::size_t j = i + 1;
+      while (j < spokes.size() && spokes[j][0] == spokes[i][0]) ++j;
+      for (std::size_t k = i + 1; k < j; ++k)
+        local_parent[static_cast<std::size_t>(find(spokes[k][1]))] = find(spokes[k - 1][1]);
+      if (!repeated_corner && spokes[i][0] > static_cast<int>(v)) {
+        ++distinct_edges;
+        if (j - i == 1) ++t.boundary_edges;
+        if (j - i > 2) ++t.nonmanifold_edges;
+        int ways[2] = {0, 0};
+        for (std::size_t k = i; k < j; ++k) ++ways[spokes[k][2]];
+        if (ways[0] > 1 || ways[1] > 1) dir_ok = false;
+        for (std::size_t k = i + 1; k < j; ++k)
+          face_sets.unite(incident[b + static_cast<std::size_t>(spokes[k][1])], incident[b + static_cast<std::size_t>(spokes[k - 1][1])]);
+      }
+      i = j;
+    }
     int roots = 0;
     for (std::size_t i = 0; i < e - b; ++i)
       if (find(static_cast<int>(i)) == static_cast<int>(i)) ++roots;
     if (roots != 1) ++t.nonmanifold_vertices;
   }
   t.vertex_manifold = t.nonmanifold_vertices == 0;
-
-  // === Components, Euler characteristic, genus
   std::vector<int> comp;
-  t.components = components_from_edges(nf, undirected, comp);
+  if (repeated_corner) {
+    // Undirected edge keys sorted: a face (v, v, w) has the edge {v, w} twice and {v, v} once.
+    const auto undirected = sorted_undirected_edges(mesh);
+    for (std::size_t i = 0; i < undirected.size();) {
+      std::size_t j = i + 1;
+      while (j < undirected.size() && undirected[j].first == undirected[i].first) ++j;
+      ++distinct_edges;
+      if (j - i == 1) ++t.boundary_edges;
+      if (j - i > 2) ++t.nonmanifold_edges;
+      int ways[2] = {0, 0};
+      for (std::size_t k = i; k < j; ++k) ++ways[undirected[k].second & 1];
+      if (ways[0] > 1 || ways[1] > 1) dir_ok = false;
+      i = j;
+    }
+    t.components = components_from_edges(nf, undirected, comp);
+  } else {
+    // Ids in order of each component's first face (as components_from_edges numbers them).
+    std::vector<int> id_of_root(nf, -1);
+    int count = 0;
+    for (std::size_t fi = 0; fi < nf; ++fi) {
+      int& id = id_of_root[static_cast<std::size_t>(face_sets.find(static_cast<int>(fi)))];
+      if (id < 0) id = count++;
+    }
+    t.components = count;
+  }
+  t.closed = t.boundary_edges == 0 && nf > 0;
+  t.edge_manifold = t.nonmanifold_edges == 0;
+  t.consistently_oriented = dir_ok;
+
+  // === Euler characteristic, genus
   const long V = referenced_vertices;
   const long E = distinct_edges;
   const long F = static_cast<long>(nf);

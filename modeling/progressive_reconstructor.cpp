@@ -454,12 +454,7 @@ Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSectio
   // === Stitch
   t = Clock::now();
   TriMesh mesh = stitch_zones(*part, solids, tol);
-  // Rounding can leave two distinct vertices almost on top of each other; their fans are where
-  // a result made of valid zone solids can cross itself. Merged when that removes the
-  // crossing (the topology is checked below), refused otherwise.
-  if (!repair_close_vertices(mesh, 1e-9 * diag))
-    return Result<TriMesh>::error(
-        "reconstruction failed: the stitched surface intersects itself where two vertices almost coincide");
+  // (The close-vertex repair of the stitched mesh runs in update_with, next to its topology.)
   for (std::size_t z = 0; z < prims.size(); ++z)
     if (!prims[z].solids.empty()) next_cache.zones.emplace(keys[z], CacheEntry{prims[z].solids, solids[z]});
   rep.timings.stitch_ms += ms_since(t);
@@ -569,7 +564,36 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
     if (!built) return built.status();
     mesh = std::move(*built);
   }
-  const MeshTopology topo = mesh_topology(mesh);
+  // === Checks: topology and curve flags; on the grid path, in parallel with the close-vertex
+  // repair. Rounding can leave two distinct vertices almost on top of each other; their fans
+  // are where a result made of valid zone solids can cross itself. Merged when that removes
+  // the crossing, refused otherwise. A merge always removes a vertex, so an unchanged vertex
+  // count means nothing was merged and the checks of the unrepaired mesh stand (the common
+  // case); otherwise they are redone on the repaired mesh.
+  MeshTopology topo;
+  auto check = [&](const TriMesh& m) {
+    topo = mesh_topology(m);
+    curve_flags(m, scaled.sections, 1e-9 * diag, rep.curve_vertex, rep.curve_edges);
+  };
+  if (orthogonal) {
+    TriMesh repaired = mesh;
+    bool clean = true;
+    parallel_over(2, options_.threads, [&](std::size_t i) {
+      if (i == 0)
+        clean = repair_close_vertices(repaired, 1e-9 * diag);
+      else
+        check(mesh);
+    });
+    if (!clean)
+      return Result<TriMesh>::error(
+          "reconstruction failed: the stitched surface intersects itself where two vertices almost coincide");
+    if (repaired.vertices.size() != mesh.vertices.size()) {
+      mesh = std::move(repaired);
+      check(mesh);
+    }
+  } else {
+    check(mesh);
+  }
   if (!topo.closed || !topo.manifold())
     return Result<TriMesh>::error("reconstruction failed: the stitched surface is not a closed 2-manifold (" +
                                   topo.problem + ")");
@@ -579,7 +603,6 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
   if (topo.components > 1)
     rep.warnings.push_back("result has " + std::to_string(topo.components) +
                            " components; a new section near the separate parts may join them");
-  curve_flags(mesh, scaled.sections, 1e-9 * diag, rep.curve_vertex, rep.curve_edges);
   rep.timings.stitch_ms += ms_since(t);
   progress("stitch", 1.0);
 

@@ -3,6 +3,8 @@
 // on a soup, which no CGAL function does on a soup with tolerance).
 #include "modeling/zone_stitch.h"
 
+#include "modeling/radix_sort.h"
+
 #include "modeling/face_intersections.h"
 #include "modeling/section_validate.h"
 
@@ -308,18 +310,23 @@ namespace {
 TriMesh weld_near(TriMesh exact, double tol, bool* closed) {
   // 2. Near positions, only among vertices of boundary edges (where sides failed to meet):
   //    sort-and-sweep along x with union-find, smallest index wins.
+  //    Undirected edges as min * n + max, radix-sorted: an edge seen once is a boundary edge.
+  const auto n = static_cast<std::uint64_t>(exact.vertices.size());
   std::vector<std::uint64_t> edges;
   edges.reserve(exact.faces.size() * 3);
   for (const auto& f : exact.faces)
-    for (int i = 0; i < 3; ++i) edges.push_back(edge_key(f[uz(i)], f[uz((i + 1) % 3)]));
-  std::sort(edges.begin(), edges.end());
+    for (int i = 0; i < 3; ++i) {
+      const auto a = static_cast<std::uint64_t>(f[uz(i)]), b = static_cast<std::uint64_t>(f[uz((i + 1) % 3)]);
+      edges.push_back(std::min(a, b) * n + std::max(a, b));
+    }
+  radix_sort(edges, bits_for(n * n));
   std::vector<int> cand;
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
     while (j < edges.size() && edges[j] == edges[i]) ++j;
     if (j - i == 1) {
-      cand.push_back(static_cast<int>(edges[i] >> 32));
-      cand.push_back(static_cast<int>(edges[i] & 0xffffffffULL));
+      cand.push_back(static_cast<int>(edges[i] / n));
+      cand.push_back(static_cast<int>(edges[i] % n));
     }
     i = j;
   }

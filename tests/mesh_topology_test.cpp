@@ -2,6 +2,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <random>
+#include <set>
 
 #include "modeling/mesh_io.h"
 #include "modeling/mesh_queries.h"
@@ -59,6 +62,81 @@ TEST(MeshTopology, TwoTetrahedraSharingOneVertexAreNotVertexManifold) {
   const auto t = mesh_topology(m);
   EXPECT_TRUE(t.edge_manifold);
   EXPECT_FALSE(t.vertex_manifold);
+}
+
+// Differential test against a plain reference (a map of undirected edges, a search over
+// faces sharing an edge) on random small soups and on damaged closed meshes: closed pieces,
+// flipped faces, duplicated faces, repeated corners and stray faces.
+TEST(MeshTopology, AgreesWithABruteForceReference) {
+  std::mt19937 rng(7);
+  for (int it = 0; it < 20000; ++it) {
+    TriMesh m;
+    if (it % 3 == 0) {
+      m = tetrahedron();
+      const TriMesh t = tetrahedron();
+      for (const auto& v : t.vertices) m.vertices.push_back(v + Vec3(5, 5, 5));
+      for (const auto& f : t.faces) m.faces.push_back({f[0] + 4, f[1] + 4, f[2] + 4});
+      const int k = static_cast<int>(rng() % 4);
+      if (k == 0) std::swap(m.faces[rng() % 8][0], m.faces[rng() % 8][1]);
+      if (k == 1) m.faces.push_back(m.faces[rng() % 8]);
+      if (k == 2) m.faces[rng() % 8][rng() % 3] = static_cast<int>(rng() % 8);
+      if (k == 3) m.faces.push_back({static_cast<int>(rng() % 8), static_cast<int>(rng() % 8), static_cast<int>(rng() % 8)});
+    } else {
+      const int nv = 3 + static_cast<int>(rng() % 8), nf = 1 + static_cast<int>(rng() % 14);
+      for (int i = 0; i < nv; ++i) m.vertices.emplace_back(rng() % 5, rng() % 5, rng() % 5);
+      for (int i = 0; i < nf; ++i)
+        m.faces.push_back({static_cast<int>(rng() % nv), static_cast<int>(rng() % nv), static_cast<int>(rng() % nv)});
+    }
+    // Reference: undirected edges with their half-edge directions; components by search.
+    std::map<std::pair<int, int>, std::array<int, 2>> edges;  // (min, max) -> half-edges min->max, max->min
+    std::map<std::pair<int, int>, std::vector<int>> faces_of;
+    for (std::size_t fi = 0; fi < m.faces.size(); ++fi)
+      for (int k = 0; k < 3; ++k) {
+        const int a = m.faces[fi][static_cast<std::size_t>(k)], b = m.faces[fi][static_cast<std::size_t>((k + 1) % 3)];
+        const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+        ++edges[key][a > b ? 1 : 0];
+        faces_of[key].push_back(static_cast<int>(fi));
+      }
+    int boundary = 0, nonmanifold = 0;
+    bool oriented = true;
+    for (const auto& [key, ways] : edges) {
+      const int n = ways[0] + ways[1];
+      boundary += n == 1;
+      nonmanifold += n > 2;
+      if (ways[0] > 1 || ways[1] > 1) oriented = false;
+    }
+    std::vector<int> comp(m.faces.size(), -1);
+    int components = 0;
+    for (std::size_t f0 = 0; f0 < m.faces.size(); ++f0) {
+      if (comp[f0] >= 0) continue;
+      std::vector<int> stack{static_cast<int>(f0)};
+      comp[f0] = components;
+      while (!stack.empty()) {
+        const int f = stack.back();
+        stack.pop_back();
+        for (int k = 0; k < 3; ++k) {
+          const int a = m.faces[static_cast<std::size_t>(f)][static_cast<std::size_t>(k)],
+                    b = m.faces[static_cast<std::size_t>(f)][static_cast<std::size_t>((k + 1) % 3)];
+          for (int g : faces_of[{std::min(a, b), std::max(a, b)}])
+            if (comp[static_cast<std::size_t>(g)] < 0) {
+              comp[static_cast<std::size_t>(g)] = components;
+              stack.push_back(g);
+            }
+        }
+      }
+      ++components;
+    }
+    const MeshTopology t = mesh_topology(m);
+    ASSERT_EQ(t.boundary_edges, boundary) << "soup " << it;
+    ASSERT_EQ(t.nonmanifold_edges, nonmanifold) << "soup " << it;
+    ASSERT_EQ(t.consistently_oriented, oriented) << "soup " << it;
+    ASSERT_EQ(t.components, components) << "soup " << it;
+    std::set<int> used;
+    for (const auto& f : m.faces) used.insert(f.begin(), f.end());
+    ASSERT_EQ(t.euler_characteristic,
+              static_cast<int>(used.size()) - static_cast<int>(edges.size()) + static_cast<int>(m.faces.size()))
+        << "soup " << it;
+  }
 }
 
 TEST(MeshIo, CgalDataMeshesHaveTheirKnownGenus) {
