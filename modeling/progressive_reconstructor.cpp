@@ -376,7 +376,6 @@ Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSectio
                                                            std::size_t strict_from, ReconstructReport& rep,
                                                            const std::function<void(const char*, double)>& progress,
                                                            Caches& next_cache) const {
-  const double diag = box.diagonal();
   auto t = Clock::now();
   auto part = partition_zones(scaled, box, &cache_.clips, &next_cache.clips);
   if (!part) return part.status();
