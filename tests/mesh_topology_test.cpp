@@ -82,9 +82,10 @@ TEST(MeshTopology, AgreesWithABruteForceReference) {
       if (k == 2) m.faces[rng() % 8][rng() % 3] = static_cast<int>(rng() % 8);
       if (k == 3) m.faces.push_back({static_cast<int>(rng() % 8), static_cast<int>(rng() % 8), static_cast<int>(rng() % 8)});
     } else {
-      const int nv = 3 + static_cast<int>(rng() % 8), nf = 1 + static_cast<int>(rng() % 14);
-      for (int i = 0; i < nv; ++i) m.vertices.emplace_back(rng() % 5, rng() % 5, rng() % 5);
-      for (int i = 0; i < nf; ++i)
+      const auto nv = 3 + rng() % 8, nf = 1 + rng() % 14;
+      for (std::size_t i = 0; i < nv; ++i)
+        m.vertices.emplace_back(static_cast<double>(rng() % 5), static_cast<double>(rng() % 5), static_cast<double>(rng() % 5));
+      for (std::size_t i = 0; i < nf; ++i)
         m.faces.push_back({static_cast<int>(rng() % nv), static_cast<int>(rng() % nv), static_cast<int>(rng() % nv)});
     }
     // Reference: undirected edges with their half-edge directions; components by search.
