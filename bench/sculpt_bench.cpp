@@ -30,8 +30,8 @@ double cpu_ms() {
 
 // Each operation twice: on a model the process has not checked yet (the memo of checked solids
 // cleared before every repetition: the first operation after an import or a reconstruction),
-// and on a model it has (what every later operation of a session sees: the model is the
-// checked result of the previous one; solid_check.h).
+// and on a model it has (what an operation sees after a cut, tunnel, extrusion or dig: the model
+// is that operation's checked result; solid_check.h).
 void run(const char* name, int reps, const std::function<ps::Status()>& op) {
   for (const bool fresh : {true, false}) {
     std::vector<double> wall, cpu;

@@ -432,12 +432,9 @@ Result<TriMesh> mesh_boolean(const TriMesh& a, const TriMesh& b, BooleanOp op, b
     if (!merge_rounded_neighbours(m, a, b))
       return Result<TriMesh>::error("Boolean operation refused: the rounded result intersects itself");
   }
-  // Closed, oriented and free of self-intersections (the faces kept from `a` among themselves,
-  // every other face against all): what check_solid asks, once the topology agrees.
-  if (!m.faces.empty()) {
-    const MeshTopology t = mesh_topology(m);
-    if (t.closed && t.manifold() && t.consistently_oriented && t.signed_volume > 0) remember_checked_solid(m);
-  }
+  // Free of self-intersections (the faces kept from `a` among themselves, every other face
+  // against all): what check_solid asks, once the topology agrees.
+  remember_checked_solid(m);
   return m;
 }
 

@@ -102,6 +102,7 @@ MeshTopology mesh_topology(const TriMesh& mesh) {
   }
   const double diag = bounding_box(mesh.vertices).diagonal();
   const double area_eps = 1e-14 * diag * diag;
+  bool repeated_corner = false;  // a face (v, v, w): edges take the general path below
   for (std::size_t fi = 0; fi < nf; ++fi) {
     const auto& f = mesh.faces[fi];
     const Vec3& a = mesh.vertices[static_cast<std::size_t>(f[0])];
@@ -109,7 +110,9 @@ MeshTopology mesh_topology(const TriMesh& mesh) {
     const Vec3& c = mesh.vertices[static_cast<std::size_t>(f[2])];
     const double area2 = (b - a).cross(c - a).norm();
     t.area += 0.5 * area2;
-    if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2] || !(area2 > area_eps)) ++t.degenerate_faces;
+    const bool repeated = f[0] == f[1] || f[1] == f[2] || f[0] == f[2];
+    repeated_corner = repeated_corner || repeated;
+    if (repeated || !(area2 > area_eps)) ++t.degenerate_faces;
   }
 
   // === Edges, vertex fans and components from the faces around each vertex
@@ -121,11 +124,16 @@ MeshTopology mesh_topology(const TriMesh& mesh) {
   // joined when they share a neighbour w; more than one fan is a non-manifold vertex. (One
   // pass of small sorts instead of sorting every edge of the mesh; faces with a repeated corner
   // take the general path below.)
-  bool repeated_corner = false;
-  for (const auto& f : mesh.faces)
-    if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) repeated_corner = true;
   long distinct_edges = 0;
   bool dir_ok = true;
+  // One undirected edge with `count` half-edges, ways[0] running from the smaller index to the
+  // larger, ways[1] the other way.
+  auto count_edge = [&](std::size_t count, const int (&ways)[2]) {
+    ++distinct_edges;
+    if (count == 1) ++t.boundary_edges;
+    if (count > 2) ++t.nonmanifold_edges;
+    if (ways[0] > 1 || ways[1] > 1) dir_ok = false;
+  };
   std::vector<int> start(nv + 1, 0);
   for (const auto& f : mesh.faces)
     for (int v : f) ++start[static_cast<std::size_t>(v) + 1];
@@ -168,12 +176,9 @@ MeshTopology mesh_topology(const TriMesh& mesh) {
       for (std::size_t k = i + 1; k < j; ++k)
         local_parent[static_cast<std::size_t>(find(spokes[k][1]))] = find(spokes[k - 1][1]);
       if (!repeated_corner && spokes[i][0] > static_cast<int>(v)) {
-        ++distinct_edges;
-        if (j - i == 1) ++t.boundary_edges;
-        if (j - i > 2) ++t.nonmanifold_edges;
         int ways[2] = {0, 0};
-        for (std::size_t k = i; k < j; ++k) ++ways[spokes[k][2]];
-        if (ways[0] > 1 || ways[1] > 1) dir_ok = false;
+        for (std::size_t k = i; k < j; ++k) ++ways[1 - spokes[k][2]];
+        count_edge(j - i, ways);
         for (std::size_t k = i + 1; k < j; ++k)
           face_sets.unite(incident[b + static_cast<std::size_t>(spokes[k][1])], incident[b + static_cast<std::size_t>(spokes[k - 1][1])]);
       }
@@ -185,31 +190,23 @@ MeshTopology mesh_topology(const TriMesh& mesh) {
     if (roots != 1) ++t.nonmanifold_vertices;
   }
   t.vertex_manifold = t.nonmanifold_vertices == 0;
-  std::vector<int> comp;
   if (repeated_corner) {
     // Undirected edge keys sorted: a face (v, v, w) has the edge {v, w} twice and {v, v} once.
     const auto undirected = sorted_undirected_edges(mesh);
     for (std::size_t i = 0; i < undirected.size();) {
       std::size_t j = i + 1;
       while (j < undirected.size() && undirected[j].first == undirected[i].first) ++j;
-      ++distinct_edges;
-      if (j - i == 1) ++t.boundary_edges;
-      if (j - i > 2) ++t.nonmanifold_edges;
       int ways[2] = {0, 0};
       for (std::size_t k = i; k < j; ++k) ++ways[undirected[k].second & 1];
-      if (ways[0] > 1 || ways[1] > 1) dir_ok = false;
+      count_edge(j - i, ways);
       i = j;
     }
+    std::vector<int> comp;
     t.components = components_from_edges(nf, undirected, comp);
   } else {
-    // Ids in order of each component's first face (as components_from_edges numbers them).
-    std::vector<int> id_of_root(nf, -1);
-    int count = 0;
-    for (std::size_t fi = 0; fi < nf; ++fi) {
-      int& id = id_of_root[static_cast<std::size_t>(face_sets.find(static_cast<int>(fi)))];
-      if (id < 0) id = count++;
-    }
-    t.components = count;
+    t.components = 0;
+    for (std::size_t fi = 0; fi < nf; ++fi)
+      if (face_sets.find(static_cast<int>(fi)) == static_cast<int>(fi)) ++t.components;
   }
   t.closed = t.boundary_edges == 0 && nf > 0;
   t.edge_manifold = t.nonmanifold_edges == 0;

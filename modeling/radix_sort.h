@@ -1,8 +1,8 @@
 #pragma once
 // LSD radix sort of unsigned 64-bit keys, 11 bits per pass, only over the low `key_bits` bits
-// (keys must be below 2^key_bits). Hand-written: the mesh passes (stitch weld, topology) sort
-// 100k+ edge keys made of two vertex indices, and std::sort's comparisons were a measurable
-// part of a progressive update (bench/results/recon.md); a few counting passes are several times
+// (keys must be below 2^key_bits). Hand-written: the stitch weld sorts 100k+ edge keys made
+// of two vertex indices, and std::sort's comparisons were a measurable part of a progressive
+// update (bench/results/recon.md); a few counting passes are several times
 // faster. Stable; the result equals std::sort's.
 #include <array>
 #include <cstdint>

@@ -454,13 +454,10 @@ Result<TriMesh> extrude_by_strokes(const TriMesh& model, const std::vector<Vec2>
     }
     if (steps_done > 0) break;
   }
-  // The smoothed result passes check_solid: the union J did (mesh_boolean remembered it), the
-  // smoothing kept J's connectivity and moved only vertices whose faces were tested against all
-  // others. Remembered once its topology agrees, so the next operation does not check it again.
-  if (steps_done > 0) {
-    const MeshTopology t = mesh_topology(result);
-    if (t.closed && t.manifold() && t.consistently_oriented && t.signed_volume > 0) remember_checked_solid(result);
-  }
+  // The smoothed result is free of self-intersections: the union J was (mesh_boolean checked
+  // it), and the smoothing kept J's connectivity and moved only vertices whose faces were tested
+  // against all others. Remembered, so the next operation does not check it again.
+  if (steps_done > 0) remember_checked_solid(result);
   if (report) {
     report->plane = P;
     report->part = used;

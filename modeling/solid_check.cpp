@@ -126,7 +126,9 @@ Status check_solid(const TriMesh& m, const char* which) {
 }
 
 void remember_checked_solid(const TriMesh& m) {
-  if (m.faces.size() >= kMemoMinFaces) remember(m, content_hash(m));
+  if (m.faces.size() < kMemoMinFaces) return;
+  const MeshTopology t = mesh_topology(m);
+  if (t.closed && t.manifold() && t.consistently_oriented && t.signed_volume > 0) remember(m, content_hash(m));
 }
 
 void forget_checked_solids() {

@@ -17,8 +17,10 @@ namespace ps {
 // `which` names the solid in the message ("the model", "the tool solid", ...).
 Status check_solid(const TriMesh& m, const char* which);
 
-// Records a solid known to pass check_solid (a Boolean result verified to the same standard),
-// so that the next operation on it skips the check. Small meshes are not recorded.
+// Records a solid the caller knows to be finite and free of self-intersections (a Boolean
+// result verified to that standard), once its topology agrees (closed, oriented 2-manifold,
+// positive volume: checked here), so that the next operation on it skips check_solid. Small
+// meshes are not recorded.
 void remember_checked_solid(const TriMesh& m);
 
 // Empties the memo (benchmarks measure the first operation on a new model with it).

@@ -3,9 +3,8 @@
 // on a soup, which no CGAL function does on a soup with tolerance).
 #include "modeling/zone_stitch.h"
 
-#include "modeling/radix_sort.h"
-
 #include "modeling/face_intersections.h"
+#include "modeling/radix_sort.h"
 #include "modeling/section_validate.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
