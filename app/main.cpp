@@ -7,6 +7,7 @@
 
 #include "app/commands.h"
 #include "app/journal.h"
+#include "modeling/allocator_policy.h"
 
 namespace ps::app {
 namespace {
@@ -30,6 +31,7 @@ void run_registered_commands(CLI::App& root) {
 }  // namespace ps::app
 
 int main(int argc, char** argv) {
+  ps::keep_freed_memory();  // modeling/allocator_policy.h
   CLI::App app{"planesketch: pen-first 3D modeling from cross sections on reference planes"};
   app.set_version_flag("--version", "planesketch 0.1");
   app.require_subcommand(0, 1);

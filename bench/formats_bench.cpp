@@ -15,6 +15,7 @@
 #include "modeling/mesh_io.h"
 #include "modeling/mesh_slicer.h"
 #include "modeling/section_generator.h"
+#include "modeling/allocator_policy.h"
 
 using namespace ps;
 namespace fs = std::filesystem;
@@ -35,6 +36,7 @@ double median_ms(int reps, const std::function<void()>& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ps::keep_freed_memory();  // modeling/allocator_policy.h
   const int reps = argc > 1 ? std::max(1, std::atoi(argv[1])) : 7;
   std::printf("formats_bench: medians over %d repetitions\n", reps);
 

@@ -21,6 +21,7 @@
 #include "modeling/mesh_queries.h"
 #include "modeling/mesh_topology.h"
 #include "tests/improve_fixtures.h"
+#include "modeling/allocator_policy.h"
 
 using namespace ps;
 
@@ -144,6 +145,7 @@ void run_cgal_baseline(const char* name, const ps::testing::JaggyInput& in, int 
 }  // namespace
 
 int main(int argc, char** argv) {
+  ps::keep_freed_memory();  // modeling/allocator_policy.h
   const int reps = argc > 1 ? std::atoi(argv[1]) : 7;
   ImproveOptions opt;
   if (argc > 2) opt.smoothing_steps = std::atoi(argv[2]);

@@ -11,6 +11,7 @@
 #include "modeling/progressive_reconstructor.h"
 #include "modeling/reconstruct.h"
 #include "tests/recon_synthetic.h"
+#include "modeling/allocator_policy.h"
 
 namespace {
 
@@ -24,6 +25,7 @@ double percentile(std::vector<double> v, double q) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ps::keep_freed_memory();  // modeling/allocator_policy.h
   using namespace ps;
   const int reps = argc > 1 ? std::max(1, std::atoi(argv[1])) : 7;
   std::vector<testing::SliceSpec> slices;

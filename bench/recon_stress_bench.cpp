@@ -57,6 +57,7 @@
 #include "modeling/mesh_io.h"
 #include "modeling/mesh_queries.h"
 #include "modeling/section_generator.h"
+#include "modeling/allocator_policy.h"
 
 namespace fs = std::filesystem;
 
@@ -272,6 +273,7 @@ void break_input(ps::SectionSet& s, int which, ps::SeededRandom& rng) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ps::keep_freed_memory();  // modeling/allocator_policy.h
   Args a;
   for (int i = 1; i < argc; ++i) {
     const std::string k = argv[i];

@@ -18,6 +18,7 @@
 #include "engine/renderer.h"
 #include "engine/scene.h"
 #include "tests/mesh_fixtures.h"
+#include "modeling/allocator_policy.h"
 
 namespace {
 
@@ -59,6 +60,7 @@ Figures time_it(int reps, F&& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ps::keep_freed_memory();  // modeling/allocator_policy.h
   const int reps = argc > 1 ? std::max(3, std::atoi(argv[1])) : 15;
   constexpr int kW = 1280, kH = 800;
   ps::engine::RendererOptions o;

@@ -19,6 +19,7 @@
 #include "modeling/sculpt_smooth.h"
 #include "modeling/solid_check.h"
 #include "tests/mesh_fixtures.h"
+#include "modeling/allocator_policy.h"
 
 namespace {
 
@@ -56,6 +57,7 @@ void run(const char* name, int reps, const std::function<ps::Status()>& op) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ps::keep_freed_memory();  // modeling/allocator_policy.h
   using namespace ps;
   const int reps = argc > 1 ? std::max(1, std::atoi(argv[1])) : 7;
   const TriMesh model = testing::uv_sphere(Vec3::Zero(), 1.0, 100, 100);

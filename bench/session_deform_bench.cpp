@@ -17,6 +17,7 @@
 #include "modeling/edge_graph_deformer.h"
 #include "modeling/sketch_session.h"
 #include "tests/section_fixtures.h"
+#include "modeling/allocator_policy.h"
 
 namespace {
 
@@ -130,6 +131,7 @@ void run(const char* name, SketchSession base, int reps) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ps::keep_freed_memory();  // modeling/allocator_policy.h
   const int reps = argc > 1 ? std::max(1, std::atoi(argv[1])) : 7;
   run("stack of 3 sections (z = -0.6, 0, 0.6)", stack({-0.6, 0.0, 0.6}, 96), reps);
   run("stack of 5 sections (z = -0.8 .. 0.8)", stack({-0.8, -0.4, 0.0, 0.4, 0.8}, 96), reps);
