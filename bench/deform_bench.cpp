@@ -26,6 +26,7 @@
 
 #include "modeling/edge_graph_deformer.h"
 #include "modeling/mesh_io.h"
+#include "modeling/allocator_policy.h"
 
 namespace {
 
@@ -195,6 +196,7 @@ Timing run_ours(const Setup& s, ps::DeformDomain domain, double lambda) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ps::keep_freed_memory();  // modeling/allocator_policy.h
   const int reps = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
   const int nthreads = std::getenv("DEFORM_BENCH_THREADS") ? std::atoi(std::getenv("DEFORM_BENCH_THREADS")) : 2;
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(std::max(1, nthreads)));
@@ -202,7 +204,10 @@ int main(int argc, char** argv) {
   const std::vector<Case> cases = {{"elephant.off", 100, 900}, {"dino.off", 100, 2800}, {"armadillo.off", 100, 9200}};
   std::printf("%-14s %6s %-24s %9s %9s %9s %9s %9s %9s %6s\n", "mesh", "roi", "method", "total", "total_min",
               "total_cpu", "drag", "drag_min", "drag_cpu", "iters");
+  // DEFORM_BENCH_ONLY=elephant runs only the meshes whose name contains it (for profiling).
+  const char* only = std::getenv("DEFORM_BENCH_ONLY");
   for (const auto& c : cases) {
+    if (only && c.mesh.find(only) == std::string::npos) continue;
     const std::string path = data + "/" + c.mesh;
     if (!std::filesystem::exists(path)) {
       std::printf("%-14s missing, skipped\n", c.mesh.c_str());

@@ -1,7 +1,5 @@
 #include "modeling/edge_graph_deformer.h"
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <tbb/blocked_range.h>
@@ -18,6 +16,7 @@
 #include <vector>
 
 #include "modeling/edge_graph.h"
+#include "modeling/rotation_fit.h"
 
 namespace ps {
 namespace {
@@ -89,46 +88,6 @@ double parallel_sum(const tbb::blocked_range<Index>& all, double identity, const
 #endif
 }
 
-// Eq. 5.5: the rotation maximising tr(R S) for S = U Sigma V^T is R = V U^T, with the sign of
-// U's column for the smallest singular value flipped when det(V U^T) < 0.
-// The SVD is computed from the closed-form eigen decomposition of S^T S = V Sigma^2 V^T
-// (U = S V Sigma^-1, re-orthonormalised), which is several times faster than Eigen's Jacobi SVD
-// on 3x3 matrices; Jacobi SVD takes over when S is close to rank 1, where the squared
-// condition number would cost precision.
-Eigen::Matrix3d fit_rotation(const Eigen::Matrix3d& s) {
-  const double scale = s.cwiseAbs().maxCoeff();
-  if (!(scale > 0.0)) return Eigen::Matrix3d::Identity();
-  const Eigen::Matrix3d sn = s / scale;
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-  eig.computeDirect(sn.transpose() * sn);  // eigenvalues ascending
-  const Eigen::Vector3d ev = eig.eigenvalues();
-  Eigen::Matrix3d u, v;
-  if (eig.info() == Eigen::Success && ev(1) > 1e-8 * ev(2)) {
-    v.col(0) = eig.eigenvectors().col(2);
-    v.col(1) = eig.eigenvectors().col(1);
-    v.col(2) = v.col(0).cross(v.col(1));  // right-handed; its sign is irrelevant below
-    const Eigen::Vector3d u0 = (sn * v.col(0)).normalized();
-    Eigen::Vector3d u1 = sn * v.col(1);
-    u1 = (u1 - u1.dot(u0) * u0).normalized();
-    u.col(0) = u0;
-    u.col(1) = u1;
-    // Third column: orthogonal to the first two with the sign that S v2 has (sigma_3 >= 0).
-    Eigen::Vector3d u2 = u0.cross(u1);
-    if (u2.dot(sn * v.col(2)) < 0.0) u2 = -u2;
-    u.col(2) = u2;
-  } else {
-    Eigen::JacobiSVD<Eigen::Matrix3d> svd(sn, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    u = svd.matrixU();
-    v = svd.matrixV();
-  }
-  Eigen::Matrix3d r = v * u.transpose();
-  if (r.determinant() < 0.0) {
-    u.col(2) *= -1.0;
-    r = v * u.transpose();
-  }
-  return r;
-}
-
 // out = m * in.middleRows(offset, m.cols()) for a row-major sparse m and a dense n x 3 `in`,
 // rows in parallel. `Out` is resized to m.rows() x 3.
 template <class Out>
@@ -143,6 +102,49 @@ void parallel_product(const SpRow& m, const MatX3& in, Eigen::Index offset, Out&
   });
 }
 
+
+// === Sparse assembly helpers (set_region)
+struct RowEntry {
+  int v;
+  double c;
+};
+
+void add_to_row(std::vector<RowEntry>& row, int v, double c) {
+  for (auto& e : row)
+    if (e.v == v) {
+      e.c += c;
+      return;
+    }
+  row.push_back({v, c});
+}
+
+// Compressed storage written outer slice by outer slice (rows of a row-major matrix, columns of
+// a column-major one), inner indices ascending within a slice.
+struct CsrBuilder {
+  std::vector<int> outer, inner;
+  std::vector<double> values;
+  void start(int n_outer, std::size_t reserve) {
+    outer.assign(1, 0);
+    outer.reserve(static_cast<std::size_t>(n_outer) + 1);
+    inner.clear();
+    values.clear();
+    inner.reserve(reserve);
+    values.reserve(reserve);
+  }
+  void push(int index, double value) {
+    inner.push_back(index);
+    values.push_back(value);
+  }
+  void end_row() { outer.push_back(static_cast<int>(inner.size())); }
+  template <class Sparse>
+  void finish(Sparse& out, int rows, int cols) const {
+    out.resize(rows, cols);
+    out.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+    std::copy(outer.begin(), outer.end(), out.outerIndexPtr());
+    std::copy(inner.begin(), inner.end(), out.innerIndexPtr());
+    std::copy(values.begin(), values.end(), out.valuePtr());
+  }
+};
 }  // namespace
 
 struct EdgeGraphDeformer::Impl {
@@ -178,6 +180,7 @@ struct EdgeGraphDeformer::Impl {
   std::vector<double> arc_w;  // signed w_ij (Laplacian)
   std::vector<Vec3> arc_rest;
   std::vector<int> node_faces;                 // into ref_faces
+  std::vector<Eigen::Quaterniond> rot;         // R_i of the last local step, per node
   // Nodes and faces the local step reads (active nodes first, then their other neighbours), and
   // their current positions / area-weighted normals, computed once per local step.
   std::vector<std::array<int, 2>> ref_v;
@@ -262,7 +265,8 @@ struct EdgeGraphDeformer::Impl {
             // (boundary nodes with one positive weight) still gets a unique rotation.
             const Vec3 n_new = normal_of(nd);
             s_cov += nd.normal_weight * nd.normal * n_new.transpose();
-            const Eigen::Matrix3d r = fit_rotation(s_cov);
+            // Warm-started from the node's rotation of the previous local step (rotation_fit.h).
+            const Eigen::Matrix3d r = fit_rotation_from(s_cov, rot[a]);
             double num = 0.0, den = 0.0;
             for (int k = nd.arc_begin; k < nd.arc_end; ++k) {
               const auto ku = static_cast<std::size_t>(k);
@@ -287,7 +291,7 @@ struct EdgeGraphDeformer::Impl {
 
   // === Global step: A x_f = J_f^T W t - A_fk x_k.
   // Known-vertex parts, recomputed when the handles move: A_fk x_k and J_k x_k.
-  MatX3Col afk_xk;
+  MatX3 afk_xk;
   MatX3 jk_xk;
   void known_parts() {
     parallel_product(afk, x, n_free, afk_xk);
@@ -296,10 +300,39 @@ struct EdgeGraphDeformer::Impl {
 
   void global_step() {
     if (n_free == 0) return;
-    MatX3Col b;
+    MatX3 b;
     parallel_product(m_rhs, t, 0, b);
     b -= afk_xk;
-    x.topRows(n_free) = solver.solve(b);
+    solve_in_place(b);
+    x.topRows(n_free) = b;
+  }
+
+  // A^-1 b for the n_free x 3 right-hand side b, in place, from the LDLT factors
+  // (P A P^T = L D L^T). Eigen's SimplicialLDLT::solve runs each triangular solve once per
+  // right-hand-side column; with b in row-major order one pass over L serves all three
+  // coordinates, so L is read twice per solve instead of six times.
+  MatX3 permuted;
+  void solve_in_place(MatX3& b) {
+    const SpCol& l = solver.matrixL().nestedExpression();  // strictly lower part, unit diagonal
+    const auto& d = solver.vectorD();
+    const auto& perm = solver.permutationP().indices();
+    const Eigen::Index n = b.rows();
+    MatX3& z = permuted;
+    z.resize(n, 3);
+    for (Eigen::Index i = 0; i < n; ++i) z.row(perm(i)) = b.row(i);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const Eigen::RowVector3d zj = z.row(j);
+      for (SpCol::InnerIterator it(l, j); it; ++it)
+        if (it.index() > j) z.row(it.index()) -= it.value() * zj;
+    }
+    for (Eigen::Index j = 0; j < n; ++j) z.row(j) /= d(j);
+    for (Eigen::Index j = n - 1; j >= 0; --j) {
+      Eigen::RowVector3d acc = z.row(j);
+      for (SpCol::InnerIterator it(l, j); it; ++it)
+        if (it.index() > j) acc -= it.value() * z.row(it.index());
+      z.row(j) = acc;
+    }
+    for (Eigen::Index i = 0; i < n; ++i) b.row(i) = z.row(perm(i));
   }
 
   double energy() const {
@@ -515,6 +548,25 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
   s.ref_c.clear();
   s.arc_ref.clear();
   s.ref_faces.clear();
+  {
+    std::size_t n_arcs_est = 0, n_faces_est = 0;
+    for (int i : active) {
+      const auto iu = static_cast<std::size_t>(i);
+      n_arcs_est += static_cast<std::size_t>(g.offsets[iu + 1] - g.offsets[iu]);
+      n_faces_est += static_cast<std::size_t>(g.face_offsets[iu + 1] - g.face_offsets[iu]);
+    }
+    s.nodes.reserve(active.size());
+    s.arc_v.reserve(n_arcs_est);
+    s.arc_c.reserve(n_arcs_est);
+    s.arc_ref.reserve(n_arcs_est);
+    s.arc_w_plus.reserve(n_arcs_est);
+    s.arc_w.reserve(n_arcs_est);
+    s.arc_rest.reserve(n_arcs_est);
+    s.node_faces.reserve(n_faces_est);
+    s.ref_v.reserve(active.size() * 2);
+    s.ref_c.reserve(active.size() * 2);
+    s.ref_faces.reserve(n_faces_est);
+  }
   std::vector<int> ref_of(n_nodes, -1), face_ref(s.mesh.faces.size(), -1);
   auto ref = [&](std::size_t node) {
     int& r = ref_of[node];
@@ -574,87 +626,125 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
   const int n_arcs = static_cast<int>(s.arc_v.size());
   const int m = s.rows();
   s.row_weight.resize(m);
-  // Each row of J as a short list of (local vertex, coefficient), duplicates merged.
-  struct Entry {
-    int v;
-    double c;
-  };
+  // Each row of J as a short list of (local vertex, coefficient), duplicates merged, zeros
+  // dropped, sorted by vertex: J in CSR form (row_begin, entries). Arc rows come in node order,
+  // so row k is arc k; the Laplacian rows follow.
   std::vector<int> row_begin(static_cast<std::size_t>(m) + 1, 0);
-  std::vector<Entry> entries;
-  entries.reserve(static_cast<std::size_t>(m) * 4);
-  std::vector<std::vector<Entry>> lap_rows(s.nodes.size());
-  auto add = [](std::vector<Entry>& row, int v, double c) {
-    for (auto& e : row)
-      if (e.v == v) {
-        e.c += c;
-        return;
-      }
-    row.push_back({v, c});
+  std::vector<RowEntry> entries;
+  entries.reserve(static_cast<std::size_t>(n_arcs) * 3 + s.nodes.size() * 6);
+  std::vector<RowEntry> row;
+  auto flush_row = [&](std::size_t r) {
+    std::sort(row.begin(), row.end(), [](const RowEntry& x, const RowEntry& y) { return x.v < y.v; });
+    for (const auto& e : row)
+      if (e.c != 0.0) entries.push_back(e);
+    row_begin[r + 1] = static_cast<int>(entries.size());
   };
-  std::vector<Entry> row;
   for (std::size_t a = 0; a < s.nodes.size(); ++a) {
     const Impl::Node& nd = s.nodes[a];
-    const auto iu = static_cast<std::size_t>(active[a]);
-    double wsum = 0.0;
-    std::vector<Entry>& lap = lap_rows[a];
     for (int k = nd.arc_begin; k < nd.arc_end; ++k) {
       const auto ku = static_cast<std::size_t>(k);
-      const double w = g.weight(static_cast<std::size_t>(g.offsets[iu] + (k - nd.arc_begin)), iu);
       // 1-form row: y_i - y_j
       row.clear();
       for (std::size_t q = 0; q < 2; ++q) {
-        add(row, nd.v[q], nd.c[q]);
-        add(row, s.arc_v[ku][q], -s.arc_c[ku][q]);
-        add(lap, s.arc_v[ku][q], -w * s.arc_c[ku][q]);
+        add_to_row(row, nd.v[q], nd.c[q]);
+        add_to_row(row, s.arc_v[ku][q], -s.arc_c[ku][q]);
       }
-      for (const auto& e : row)
-        if (e.c != 0.0) entries.push_back(e);
-      row_begin[ku + 1] = static_cast<int>(entries.size());
+      flush_row(ku);
       s.row_weight[k] = lambdas[a] * s.arc_w_plus[ku];
-      wsum += w;
     }
-    for (std::size_t q = 0; q < 2; ++q) add(lap, nd.v[q], wsum * nd.c[q]);
     s.row_weight[n_arcs + static_cast<Eigen::Index>(a)] = (1.0 - lambdas[a]) * area_mean;
   }
   for (std::size_t a = 0; a < s.nodes.size(); ++a) {
-    for (const auto& e : lap_rows[a])
-      if (e.c != 0.0) entries.push_back(e);
-    row_begin[static_cast<std::size_t>(n_arcs) + a + 1] = static_cast<int>(entries.size());
+    // Laplacian row: sum_j w_ij (y_i - y_j)
+    const Impl::Node& nd = s.nodes[a];
+    row.clear();
+    double wsum = 0.0;
+    for (int k = nd.arc_begin; k < nd.arc_end; ++k) {
+      const auto ku = static_cast<std::size_t>(k);
+      for (std::size_t q = 0; q < 2; ++q) add_to_row(row, s.arc_v[ku][q], -s.arc_w[ku] * s.arc_c[ku][q]);
+      wsum += s.arc_w[ku];
+    }
+    for (std::size_t q = 0; q < 2; ++q) add_to_row(row, nd.v[q], wsum * nd.c[q]);
+    flush_row(static_cast<std::size_t>(n_arcs) + a);
   }
-  // === J split by column (free | known), the right-hand-side operator M = J_f^T W, and the
-  // normal matrix A = J_f^T W J_f (lower triangle) and A_fk = J_f^T W J_k from row outer products.
-  std::vector<Eigen::Triplet<double>> tf, tk, tm, ta, tafk;
-  tf.reserve(entries.size());
-  tm.reserve(entries.size());
-  ta.reserve(entries.size() * 3);
+  // === J split by column (free | known), the right-hand-side operator M = J_f^T W, the normal
+  // matrix A = J_f^T W J_f (lower triangle) and A_fk = J_f^T W J_k, written straight into
+  // compressed storage. Triplets and setFromTriplets cost about 4x as much here (their sort and
+  // duplicate merge over ~1M entries at 9.2k free vertices), and this is the stage that decides
+  // whether a new region is interactive.
+  CsrBuilder jf_b, jk_b;
+  jf_b.start(m, entries.size());
+  jk_b.start(m, 0);
   for (int r = 0; r < m; ++r) {
-    const double w = s.row_weight[r];
     for (int pe = row_begin[static_cast<std::size_t>(r)]; pe < row_begin[static_cast<std::size_t>(r) + 1]; ++pe) {
-      const Entry& ep = entries[static_cast<std::size_t>(pe)];
-      if (ep.v >= s.n_free) {
-        tk.emplace_back(r, ep.v - s.n_free, ep.c);
-        continue;
-      }
-      tf.emplace_back(r, ep.v, ep.c);
+      const RowEntry& e = entries[static_cast<std::size_t>(pe)];
+      if (e.v < s.n_free) jf_b.push(e.v, e.c);
+      else jk_b.push(e.v - s.n_free, e.c);
+    }
+    jf_b.end_row();
+    jk_b.end_row();
+  }
+  jf_b.finish(s.jf, m, s.n_free);
+  jk_b.finish(s.jk, m, s.n_known);
+  // M = (W J_f)^T: a counting transpose of J_f, rows of zero weight left out.
+  {
+    std::vector<int> count(static_cast<std::size_t>(s.n_free) + 1, 0);
+    for (int r = 0; r < m; ++r)
+      if (s.row_weight[r] != 0.0)
+        for (SpRow::InnerIterator it(s.jf, r); it; ++it) ++count[static_cast<std::size_t>(it.col()) + 1];
+    for (int c = 0; c < s.n_free; ++c) count[static_cast<std::size_t>(c) + 1] += count[static_cast<std::size_t>(c)];
+    s.m_rhs.resize(s.n_free, m);
+    s.m_rhs.resizeNonZeros(count.back());
+    std::copy(count.begin(), count.end(), s.m_rhs.outerIndexPtr());
+    for (int r = 0; r < m; ++r) {
+      const double w = s.row_weight[r];
       if (w == 0.0) continue;
-      tm.emplace_back(ep.v, r, w * ep.c);
-      for (int qe = row_begin[static_cast<std::size_t>(r)]; qe < row_begin[static_cast<std::size_t>(r) + 1]; ++qe) {
-        const Entry& eq = entries[static_cast<std::size_t>(qe)];
-        if (eq.v >= s.n_free) tafk.emplace_back(ep.v, eq.v - s.n_free, w * ep.c * eq.c);
-        else if (eq.v <= ep.v) ta.emplace_back(ep.v, eq.v, w * ep.c * eq.c);
+      for (SpRow::InnerIterator it(s.jf, r); it; ++it) {
+        const int slot = count[static_cast<std::size_t>(it.col())]++;
+        s.m_rhs.innerIndexPtr()[slot] = r;
+        s.m_rhs.valuePtr()[slot] = w * it.value();
       }
     }
   }
-  s.jf = SpRow(m, s.n_free);
-  s.jf.setFromTriplets(tf.begin(), tf.end());
-  s.jk = SpRow(m, s.n_known);
-  s.jk.setFromTriplets(tk.begin(), tk.end());
-  s.m_rhs = SpRow(s.n_free, m);
-  s.m_rhs.setFromTriplets(tm.begin(), tm.end());
-  SpCol a_ff(s.n_free, s.n_free);
-  a_ff.setFromTriplets(ta.begin(), ta.end());
-  s.afk = SpRow(s.n_free, s.n_known);
-  s.afk.setFromTriplets(tafk.begin(), tafk.end());
+  // A (lower, by column) and A_fk (by row): column p of A and row p of A_fk are
+  // sum over the rows r holding p of M(p, r) * (row r of J_f, resp. J_k) (Gustavson).
+  SpCol a_ff;
+  {
+    CsrBuilder a_b, afk_b;
+    a_b.start(s.n_free, static_cast<std::size_t>(s.n_free) * 16);
+    afk_b.start(s.n_free, 0);
+    std::vector<double> acc_f(static_cast<std::size_t>(s.n_free), 0.0), acc_k(static_cast<std::size_t>(s.n_known), 0.0);
+    std::vector<int> mark_f(static_cast<std::size_t>(s.n_free), -1), mark_k(static_cast<std::size_t>(s.n_known), -1);
+    std::vector<int> touched_f, touched_k;
+    for (int col = 0; col < s.n_free; ++col) {
+      touched_f.clear();
+      touched_k.clear();
+      for (SpRow::InnerIterator mt(s.m_rhs, col); mt; ++mt) {
+        const auto r = mt.col();
+        const double wp = mt.value();
+        for (SpRow::InnerIterator it(s.jf, r); it; ++it) {
+          const int q = static_cast<int>(it.col());
+          if (q < col) continue;
+          const auto qu = static_cast<std::size_t>(q);
+          if (mark_f[qu] != col) mark_f[qu] = col, acc_f[qu] = 0.0, touched_f.push_back(q);
+          acc_f[qu] += wp * it.value();
+        }
+        for (SpRow::InnerIterator it(s.jk, r); it; ++it) {
+          const auto qu = static_cast<std::size_t>(it.col());
+          if (mark_k[qu] != col) mark_k[qu] = col, acc_k[qu] = 0.0, touched_k.push_back(static_cast<int>(qu));
+          acc_k[qu] += wp * it.value();
+        }
+      }
+      std::sort(touched_f.begin(), touched_f.end());
+      for (int q : touched_f) a_b.push(q, acc_f[static_cast<std::size_t>(q)]);
+      a_b.end_row();
+      std::sort(touched_k.begin(), touched_k.end());
+      for (int q : touched_k) afk_b.push(q, acc_k[static_cast<std::size_t>(q)]);
+      afk_b.end_row();
+    }
+    a_b.finish(a_ff, s.n_free, s.n_free);  // column p holds rows q >= p: the lower triangle
+    afk_b.finish(s.afk, s.n_free, s.n_known);
+  }
   // Rest positions and identity-transform targets (naive Laplacian editing).
   const int n_local = static_cast<int>(s.global_of.size());
   s.x.resize(n_local, 3);
@@ -669,6 +759,7 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
     s.t_rest.row(n_arcs + static_cast<Eigen::Index>(a)) = nd.delta.transpose();
   }
   s.t = s.t_rest;
+  s.rot.assign(s.nodes.size(), Eigen::Quaterniond::Identity());
   st.build_ms = ms_since(t0);
   // === Factor
   const auto t1 = Clock::now();
@@ -699,6 +790,7 @@ Status EdgeGraphDeformer::deform(const std::vector<Vec3>& targets) {
   s.stats.iterations = 0;
   // === Initial guess: naive Laplacian editing (identity transforms).
   s.t = s.t_rest;
+  s.rot.assign(s.nodes.size(), Eigen::Quaterniond::Identity());
   s.global_step();
   s.stats.initial_solve_ms = ms_since(t0);
   double e_prev = s.energy();

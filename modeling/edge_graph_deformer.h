@@ -25,10 +25,13 @@
 //   - The Laplacian term is multiplied by A_mean (mean node area of the region), which makes
 //     both terms dimensionless: the result is invariant to uniform scaling for every lambda.
 //
-// Solver (5.3.3): the normal equations A x_f = J_f^T W t - A_fk x_k are built and factored
-// (Eigen SimplicialLDLT, AMD ordering) once per region/handles/lambda; each local/global
-// iteration only rebuilds the targets t (local step in parallel with TBB) and back-substitutes.
-// The first solve uses identity transforms (naive Laplacian editing).
+// Solver (5.3.3): the normal equations A x_f = J_f^T W t - A_fk x_k are built straight into
+// compressed storage and factored (Eigen SimplicialLDLT, AMD ordering) once per
+// region/handles/lambda; each local/global iteration only rebuilds the targets t (local step in
+// parallel with TBB) and back-substitutes the three coordinates in one pass over the factor.
+// The first solve uses identity transforms (naive Laplacian editing). Each node keeps its R_i
+// between local steps, and the next fit starts from it (Newton on SO(3), rotation_fit.h); deform()
+// starts from identity, drag() from the previous frame's rotations.
 #include <memory>
 #include <vector>
 
