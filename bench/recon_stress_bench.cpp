@@ -26,6 +26,8 @@
 // Usage: recon_stress_bench [--cases N] [--first-seed S] [--timeout SEC] [--oblique-every K]
 //                           [--no-improve] [--oblique-only] [--max-planes P] [--points LO HI]
 //                           [--binary PATH] [--work DIR] [--keep-failures]
+// --keep-failures keeps the input and logs of every case that is not ok, except refusals of
+// inputs broken on purpose.
 // Case c has 2 + c % (P - 1) orthogonal planes (default P = 6) and curves of LO..HI points
 // (default 40..200, the generator's default).
 // With --oblique-every K > 0, every K-th clean case adds 1-3 oblique planes (default 0: the
@@ -309,7 +311,7 @@ int main(int argc, char** argv) {
   const char* const families[] = {"clean", "perturbed", "bad"};
   std::map<std::string, std::map<std::string, int>> by_family, by_variant;  // family/variant -> outcome -> cases
   std::map<std::string, int> outcome, refusals;
-  std::vector<std::string> failures;
+  std::vector<std::string> failures, refused_valid;
   std::vector<double> wall_all, wall_ok, cpu_ok;
   int oblique_cases = 0, oblique_ok = 0;
   for (int c = 0; c < a.cases; ++c) {
@@ -390,7 +392,11 @@ int main(int argc, char** argv) {
     by_variant[std::string(families[family]) + ": " + variant][kind]++;
     const bool keep = kind != "ok" && kind != "refused";
     if (keep) failures.push_back("seed " + std::to_string(seed) + " (" + families[family] + ", " + variant + "): " + kind + ": " + detail);
-    if (!(keep && a.keep_failures)) {
+    // A valid input (clean or perturbed) that is refused is listed too, and kept with
+    // --keep-failures: the refusal rate is what the stress drives towards zero.
+    const bool valid_refused = kind == "refused" && family != 2;
+    if (valid_refused) refused_valid.push_back("seed " + std::to_string(seed) + " (" + families[family] + ", " + variant + "): " + detail);
+    if (!((keep || valid_refused) && a.keep_failures)) {
       fs::remove(in, ec);
       fs::remove(log_out, ec);
       fs::remove(log_err, ec);
@@ -434,6 +440,10 @@ int main(int argc, char** argv) {
     for (const auto& [k, n] : refusals) sorted.emplace_back(-n, k);
     std::sort(sorted.begin(), sorted.end());
     for (const auto& [n, k] : sorted) std::printf("| %s | %d |\n", k.c_str(), -n);
+  }
+  if (!refused_valid.empty()) {
+    std::printf("\nValid inputs refused:\n");
+    for (const auto& f : refused_valid) std::printf("- %s\n", f.c_str());
   }
   if (!failures.empty()) {
     std::printf("\nCases that crashed, hung or broke a guarantee:\n");
