@@ -39,7 +39,8 @@ constexpr std::size_t kGrain = 512;
 // (as for parallel_over in progressive_reconstructor.cpp). There the range is cut into chunks
 // of its grain size, run on std::threads taking chunk indices from an atomic counter (creation
 // and join are synchronisation TSan sees), so what TSan reports is about the loop bodies and
-// the state they share. A reduction keeps one partial per chunk and joins them in chunk order.
+// the state they share. A reduction keeps one partial per chunk and joins them in chunk order
+// (deterministic too, though not the same order as TBB's deterministic reduce).
 #if defined(__SANITIZE_THREAD__)
 template <class Index>
 std::vector<tbb::blocked_range<Index>> chunks_of(const tbb::blocked_range<Index>& all) {
@@ -84,7 +85,13 @@ double parallel_sum(const tbb::blocked_range<Index>& all, double identity, const
   for (double p : partial) total = join(total, p);
   return total;
 #else
-  return tbb::parallel_reduce(all, identity, body, join);
+  // Deterministic: parallel_reduce's auto partitioner splits the range by work stealing, so the
+  // order of the floating-point additions, hence the last bits of the energy, varied with the
+  // machine's load; an energy change near the tolerance then stopped the iterations one step
+  // apart, and the same replayed deformation was not bit-identical run to run (seen once in
+  // app_deform_replay_test on a loaded machine). This one splits down to the grain size in a
+  // fixed way and joins in a fixed order, whatever the threads do.
+  return tbb::parallel_deterministic_reduce(all, identity, body, join);
 #endif
 }
 

@@ -22,6 +22,7 @@
 #include "modeling/frustum_builder.h"
 #include "modeling/polyhedral_partition.h"
 #include "modeling/mesh_topology.h"
+#include "modeling/pinch_separate.h"
 #include "modeling/reconstruction_limits.h"
 #include "modeling/section_validate.h"
 #include "modeling/zone_partition.h"
@@ -39,6 +40,41 @@ double ms_since(Clock::time_point t) {
 }
 
 ImproveHook g_improve_hook = &improve_mesh;  // thesis 4.5.1, modeling/mesh_improve.h
+
+// A closed surface that touches itself along edges or at vertices (material in diagonally
+// opposite zones around a grid line): its sheets are separated by `gap` (pinch_separate.h) when
+// that leaves no self-intersection among the faces around the moved vertices. Returns the
+// number of vertices split (mesh replaced) or 0 (mesh unchanged). The gap is 1e-10 of the
+// diagonal: a tenth of the tolerance by which curve vertices are recognised (curve_flags,
+// 1e-9), so a moved curve vertex stays fixed in the improvement, and 1e-4 of the guarantee
+// that curve points lie on the surface within 1e-6.
+int separate_touching_sheets(TriMesh& mesh, double gap) {
+  TriMesh separated = mesh;
+  std::vector<int> moved;
+  const int split = separate_pinches(separated, gap, &moved);
+  if (split <= 0) return 0;
+  std::vector<char> mark(separated.vertices.size(), 0);
+  for (int v : moved) mark[uz(v)] = 1;
+  std::vector<int> around;
+  for (std::size_t f = 0; f < separated.faces.size(); ++f)
+    for (int v : separated.faces[f])
+      if (mark[uz(v)]) {
+        around.push_back(static_cast<int>(f));
+        break;
+      }
+  if (!intersecting_face_pairs(separated.vertices, separated.faces, around).empty()) return 0;
+  const MeshTopology t = mesh_topology(separated);
+  if (!t.closed || !t.manifold() || !t.consistently_oriented) return 0;
+  canonicalize(separated);
+  mesh = std::move(separated);
+  return split;
+}
+
+std::string separated_warning(int split) {
+  return "the surface touched itself at " + std::to_string(split) +
+         " vertices (material in diagonally opposite zones); the touching sheets were separated by 1e-10 of the "
+         "bounding-box diagonal";
+}
 constexpr double kSewTolerance = 0.02;
 
 // === Canonical order of planes and curves (order independence, thesis 4.1 requirement 3).
@@ -293,7 +329,13 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       // coincident exact points rounded onto each other can fold a fan).
       t = Clock::now();
       mesh = stitch_polyhedral_zones(*part, solids, 1e-10 * box.diagonal());
-      const MeshTopology topo = mesh_topology(mesh);
+      MeshTopology topo = mesh_topology(mesh);
+      if (!topo.manifold() && topo.boundary_edges == 0) {
+        if (const int split = separate_touching_sheets(mesh, 1e-10 * box.diagonal()); split > 0) {
+          rep.warnings.push_back(separated_warning(split));
+          topo = mesh_topology(mesh);
+        }
+      }
       if (!topo.closed || !topo.manifold() || !topo.consistently_oriented) {
         failure = "the stitched surface is not a closed, oriented 2-manifold (" + topo.problem + ")";
       } else {
@@ -592,6 +634,12 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
     }
   } else {
     check(mesh);
+  }
+  if (orthogonal && !topo.manifold() && topo.boundary_edges == 0) {
+    if (const int split = separate_touching_sheets(mesh, 1e-10 * diag); split > 0) {
+      rep.warnings.push_back(separated_warning(split));
+      check(mesh);
+    }
   }
   if (!topo.closed || !topo.manifold())
     return Result<TriMesh>::error("reconstruction failed: the stitched surface is not a closed 2-manifold (" +

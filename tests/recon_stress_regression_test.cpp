@@ -88,20 +88,40 @@ ps::SectionSet stress_case(std::uint64_t seed) {
   return ps::generate_sections(g).sections;
 }
 
+// One stress case written to a scratch directory and reconstructed in a child process.
+struct StressRun {
+  fs::path dir;
+  std::string out, err;
+  ps::SectionSet sections;
+  Outcome r;
+};
+
+StressRun run_stress_case(std::uint64_t seed, const std::string& scratch) {
+  StressRun run;
+  run.dir = fs::temp_directory_path() / (scratch + "_" + std::to_string(getpid()));
+  fs::create_directories(run.dir);
+  const std::string base = (run.dir / ("case" + std::to_string(seed))).string();
+  const std::string in = base + ".json";
+  run.out = base + ".off";
+  run.err = base + ".err";
+  run.sections = stress_case(seed);
+  {
+    std::ofstream f(in);
+    f << ps::format_contour_json(run.sections);
+  }
+  run.r = run_with_watchdog({PLANESKETCH_BINARY, "reconstruct", in, "-o", run.out, "--threads", "1", "--no-improve"}, run.err);
+  return run;
+}
+
 class StressSeed : public ::testing::TestWithParam<int> {};
 
 TEST_P(StressSeed, EndsOkOrRefusedWithinTheWatchdog) {
   const auto seed = static_cast<std::uint64_t>(GetParam());
-  const fs::path dir = fs::temp_directory_path() / ("ps_stress_regression_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  const std::string base = (dir / ("case" + std::to_string(seed))).string();
-  const std::string in = base + ".json", out = base + ".off", err = base + ".err";
-  const ps::SectionSet sections = stress_case(seed);
-  {
-    std::ofstream f(in);
-    f << ps::format_contour_json(sections);
-  }
-  const Outcome r = run_with_watchdog({PLANESKETCH_BINARY, "reconstruct", in, "-o", out, "--threads", "1", "--no-improve"}, err);
+  const StressRun run = run_stress_case(seed, "ps_stress_regression");
+  const Outcome& r = run.r;
+  const std::string &out = run.out, &err = run.err;
+  const ps::SectionSet& sections = run.sections;
+  const fs::path& dir = run.dir;
   ASSERT_FALSE(r.timed_out) << "seed " << seed << " hung (over " << kWatchdogSeconds << " s)";
   ASSERT_FALSE(WIFSIGNALED(r.status)) << "seed " << seed << " crashed: " << strsignal(WTERMSIG(r.status));
   ASSERT_TRUE(WIFEXITED(r.status));
@@ -123,6 +143,28 @@ TEST_P(StressSeed, EndsOkOrRefusedWithinTheWatchdog) {
 
 // The crashing seeds first, then the hanging ones.
 INSTANTIATE_TEST_SUITE_P(CrashedOrHung, StressSeed, ::testing::Values(281, 845, 104, 293, 353, 605, 722, 739, 869));
+
+// Valid inputs the 1000-case run refused because the stitched surface touched itself along a grid
+// line (material in diagonally opposite zones); the touching sheets are now separated
+// (pinch_separate.h), and these must reconstruct.
+class PinchedSeed : public ::testing::TestWithParam<int> {};
+
+TEST_P(PinchedSeed, Reconstructs) {
+  const auto seed = static_cast<std::uint64_t>(GetParam());
+  const StressRun run = run_stress_case(seed, "ps_pinch_regression");
+  ASSERT_FALSE(run.r.timed_out) << "seed " << seed;
+  ASSERT_TRUE(WIFEXITED(run.r.status) && WEXITSTATUS(run.r.status) == 0) << "seed " << seed << ": " << last_line(run.err);
+  auto mesh = ps::read_mesh(run.out);
+  ASSERT_TRUE(mesh) << mesh.message();
+  const auto g = ps::check_guarantees(*mesh);
+  EXPECT_TRUE(g.valid()) << "seed " << seed << ": " << g.problem();
+  const auto pts = run.sections.all_points();
+  EXPECT_LE(ps::max_distance_to_surface(*mesh, pts), 1e-6 * ps::bounding_box(pts).diagonal()) << "seed " << seed;
+  std::error_code ec;
+  fs::remove_all(run.dir, ec);
+}
+
+INSTANTIATE_TEST_SUITE_P(TouchingSheets, PinchedSeed, ::testing::Values(50, 305, 761));
 
 // Two unit cubes overlapping in one mesh: closed, oriented, positive volume, but intersecting
 // itself. The zone union must refuse it (corefinement's contract) instead of corefining it.

@@ -1,0 +1,40 @@
+#pragma once
+// Separation of a closed surface that touches itself along edges or at vertices (pinches).
+//
+// Where material lies in two diagonally opposite zones around a grid line and not in the other
+// two, the stitched surface of the reconstruction is two solid wedges meeting along that line:
+// edges with four faces, and vertices whose faces form two fans. Such a surface bounds a valid
+// solid but is not a 2-manifold, and the reconstruction used to refuse it (1.1% of the valid
+// stress inputs, bench/results/stress.md).
+//
+// separate_pinches makes it one:
+//   1. Around an edge (a, b) with more than two faces, the faces are ordered by the angle of
+//      their third vertex about the edge's axis d = b - a (a < b by index). With outward
+//      orientation, a face running b -> a has solid on its side of increasing angle and a face
+//      running a -> b on its side of decreasing angle, so walking in increasing angle each
+//      b -> a face opens a wedge of solid and the next face, which must run a -> b, closes it.
+//      The faces of one wedge are glued along the edge; different wedges are not.
+//   2. Around each vertex the faces are grouped into fans through the glued edges; a vertex with
+//      several fans gets one copy per fan (the fan holding the vertex's first corner, in face
+//      order, keeps the original index; the copies are appended in corner order, so the result
+//      depends only on the input mesh).
+//   3. Every copy of a split vertex moves by `gap` against its fan's area-weighted normal, into
+//      its own solid, so the sheets no longer touch.
+// `gap` must be far below the local edge lengths; the caller checks the result for
+// self-intersections around the moved vertices (listed in `moved`).
+//
+// Hand-written: CGAL 5.5's PMP::duplicate_non_manifold_vertices splits vertices only, on a
+// halfedge graph, which cannot hold an edge with four faces in the first place.
+//
+// Returns the number of vertices split (0: the surface has no pinch, mesh unchanged), or -1 when
+// the surface has a boundary edge, an edge whose faces do not alternate in direction, a repeated
+// angle, or a fan without a normal (mesh unchanged).
+#include <vector>
+
+#include "modeling/mesh.h"
+
+namespace ps {
+
+int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved = nullptr);
+
+}  // namespace ps

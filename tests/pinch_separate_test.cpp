@@ -1,0 +1,125 @@
+// separate_pinches (modeling/pinch_separate.h): two solids touching along an edge or at a
+// vertex become a closed 2-manifold without self-intersections, the touching sheets moved
+// apart by the gap; surfaces without pinches are left alone; open surfaces are refused.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "modeling/face_intersections.h"
+#include "modeling/mesh_topology.h"
+#include "modeling/pinch_separate.h"
+
+namespace {
+
+using ps::TriMesh;
+using ps::Vec3;
+
+// Axis-aligned box [lo, hi], outward triangles.
+TriMesh box(const Vec3& lo, const Vec3& hi) {
+  TriMesh m;
+  for (int i = 0; i < 8; ++i)
+    m.vertices.emplace_back(i & 1 ? hi.x() : lo.x(), (i >> 1) & 1 ? hi.y() : lo.y(), (i >> 2) & 1 ? hi.z() : lo.z());
+  m.faces = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+             {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return m;
+}
+
+// Both boxes in one mesh, vertices at the same position merged (the stitched surface's welding).
+TriMesh merged(const TriMesh& a, const TriMesh& b) {
+  TriMesh m = a;
+  for (const auto& f : b.faces) {
+    ps::Face g{};
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = b.vertices[static_cast<std::size_t>(f[static_cast<std::size_t>(k)])];
+      int found = -1;
+      for (std::size_t v = 0; v < m.vertices.size(); ++v)
+        if (m.vertices[v] == p) found = static_cast<int>(v);
+      if (found < 0) {
+        found = static_cast<int>(m.vertices.size());
+        m.vertices.push_back(p);
+      }
+      g[static_cast<std::size_t>(k)] = found;
+    }
+    m.faces.push_back(g);
+  }
+  return m;
+}
+
+std::vector<int> all_faces(const TriMesh& m) {
+  std::vector<int> f(m.faces.size());
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] = static_cast<int>(i);
+  return f;
+}
+
+void expect_separated(const TriMesh& m, int components, double volume) {
+  const ps::MeshTopology t = ps::mesh_topology(m);
+  EXPECT_TRUE(t.closed) << t.problem;
+  EXPECT_TRUE(t.manifold()) << t.problem;
+  EXPECT_TRUE(t.consistently_oriented) << t.problem;
+  EXPECT_EQ(t.components, components);
+  EXPECT_NEAR(t.signed_volume, volume, 1e-6);
+  EXPECT_TRUE(ps::intersecting_face_pairs(m.vertices, m.faces, all_faces(m)).empty());
+}
+
+TEST(PinchSeparate, BoxesTouchingAlongAnEdge) {
+  // A in x, y < 0 and B in x, y > 0 share the segment x = y = 0, 0 <= z <= 1.
+  TriMesh m = merged(box(Vec3(-1, -1, 0), Vec3(0, 0, 1)), box(Vec3(0, 0, 0), Vec3(1, 1, 1)));
+  const ps::MeshTopology before = ps::mesh_topology(m);
+  ASSERT_FALSE(before.edge_manifold);
+  ASSERT_EQ(m.vertices.size(), 14u);
+  const double gap = 1e-9;
+  std::vector<int> moved;
+  EXPECT_EQ(ps::separate_pinches(m, gap, &moved), 2);
+  EXPECT_EQ(m.vertices.size(), 16u);
+  EXPECT_EQ(moved.size(), 4u);  // both ends of the edge, once per box
+  expect_separated(m, 2, 2.0);
+  // Each copy moved by the gap from (0, 0, 0) or (0, 0, 1), into its own box.
+  for (int v : moved) {
+    const Vec3& p = m.vertices[static_cast<std::size_t>(v)];
+    EXPECT_NEAR((p - Vec3(0, 0, std::round(p.z()))).norm(), gap, 1e-15);
+    EXPECT_NE(p.x(), 0.0);
+    EXPECT_EQ(p.x() < 0, p.y() < 0);  // into A (x, y < 0) or into B (x, y > 0)
+  }
+}
+
+TEST(PinchSeparate, BoxesTouchingAtACorner) {
+  TriMesh m = merged(box(Vec3(-1, -1, -1), Vec3(0, 0, 0)), box(Vec3(0, 0, 0), Vec3(1, 1, 1)));
+  ASSERT_EQ(m.vertices.size(), 15u);
+  ASSERT_FALSE(ps::mesh_topology(m).vertex_manifold);
+  EXPECT_EQ(ps::separate_pinches(m, 1e-9), 1);
+  EXPECT_EQ(m.vertices.size(), 16u);
+  expect_separated(m, 2, 2.0);
+}
+
+TEST(PinchSeparate, TheResultDoesNotDependOnTheFaceOrderBeyondNumbering) {
+  // Reversed face order: the same vertex positions come out (as a set).
+  TriMesh a = merged(box(Vec3(-1, -1, 0), Vec3(0, 0, 1)), box(Vec3(0, 0, 0), Vec3(1, 1, 1)));
+  TriMesh b = a;
+  std::reverse(b.faces.begin(), b.faces.end());
+  ASSERT_EQ(ps::separate_pinches(a, 1e-9), 2);
+  ASSERT_EQ(ps::separate_pinches(b, 1e-9), 2);
+  auto sorted = [](std::vector<Vec3> v) {
+    std::sort(v.begin(), v.end(), [](const Vec3& p, const Vec3& q) {
+      return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+    });
+    return v;
+  };
+  EXPECT_EQ(sorted(a.vertices), sorted(b.vertices));
+}
+
+TEST(PinchSeparate, LeavesManifoldSurfacesAloneAndRefusesOpenOnes) {
+  TriMesh one = box(Vec3(0, 0, 0), Vec3(1, 2, 3));
+  const TriMesh copy = one;
+  EXPECT_EQ(ps::separate_pinches(one, 1e-9), 0);
+  EXPECT_EQ(one.vertices, copy.vertices);
+  EXPECT_EQ(one.faces, copy.faces);
+  // An open surface (one face of the pinched pair removed) is refused, and left as it was.
+  TriMesh open = merged(box(Vec3(-1, -1, 0), Vec3(0, 0, 1)), box(Vec3(0, 0, 0), Vec3(1, 1, 1)));
+  open.faces.pop_back();
+  const TriMesh open_copy = open;
+  EXPECT_EQ(ps::separate_pinches(open, 1e-9), -1);
+  EXPECT_EQ(open.faces, open_copy.faces);  // unchanged on refusal
+}
+
+}  // namespace
