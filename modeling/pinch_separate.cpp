@@ -42,7 +42,7 @@ int corner_of(const std::vector<Face>& faces, int f, int v) {
 
 }  // namespace
 
-int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved) {
+int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved, PinchMode mode) {
   if (moved) moved->clear();
   const auto& faces = mesh.faces;
   const auto& pos = mesh.vertices;
@@ -102,8 +102,11 @@ int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved) {
         if (around[q].angle == around[(q + 1) % n].angle) return -1;
         if (around[q].forward == around[(q + 1) % n].forward) return -1;  // directions must alternate
       }
+      // Solid wedges: each b -> a face with the next face; empty wedges (kJoin): each a -> b
+      // face with the next face.
+      const bool opener = mode == PinchMode::kSeparate ? false : true;
       for (std::size_t q = 0; q < n; ++q)
-        if (!around[q].forward) glue(around[q].face, around[(q + 1) % n].face);
+        if (around[q].forward == opener) glue(around[q].face, around[(q + 1) % n].face);
     }
     i = j;
   }
@@ -144,12 +147,16 @@ int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved) {
         touched[uz(w)] = 1;
       }
   }
+  // kSeparate: into the copy's own solid, against the normal. kJoin: a copy's fan wraps an
+  // empty wedge (its normals point into it), so the copy moves into that wedge, along the
+  // normal, and the solid between the two copies becomes the joining sliver.
+  const double toward_normal = mode == PinchMode::kSeparate ? -1.0 : 1.0;
   std::vector<int> out_moved;
   for (std::size_t w = 0; w < vertices.size(); ++w) {
     if (!touched[w]) continue;
     const double len = normal[w].norm();
     if (!(len > 0.0) || !std::isfinite(len)) return -1;
-    vertices[w] -= (gap / len) * normal[w];
+    vertices[w] += (toward_normal * gap / len) * normal[w];
     out_moved.push_back(static_cast<int>(w));
   }
   mesh.vertices = std::move(vertices);

@@ -23,6 +23,12 @@
 // `gap` must be far below the local edge lengths; the caller checks the result for
 // self-intersections around the moved vertices (listed in `moved`).
 //
+// PinchMode::kJoin pairs the faces the other way: across the empty wedges, each a -> b face with
+// the next face in increasing angle. The solids then stay joined along the line by a sliver
+// `gap` wide, and the empty wedges become separate. Where a vertex's faces form a single fan
+// however they are paired in kSeparate (the fan passes through the pinched edge twice), kJoin
+// can split it: the caller tries kSeparate first, then kJoin.
+//
 // Hand-written: CGAL 5.5's PMP::duplicate_non_manifold_vertices splits vertices only, on a
 // halfedge graph, which cannot hold an edge with four faces in the first place.
 //
@@ -35,6 +41,9 @@
 
 namespace ps {
 
-int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved = nullptr);
+enum class PinchMode { kSeparate, kJoin };
+
+int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved = nullptr,
+                     PinchMode mode = PinchMode::kSeparate);
 
 }  // namespace ps

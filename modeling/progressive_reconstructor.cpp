@@ -48,10 +48,10 @@ ImproveHook g_improve_hook = &improve_mesh;  // thesis 4.5.1, modeling/mesh_impr
 // diagonal: a tenth of the tolerance by which curve vertices are recognised (curve_flags,
 // 1e-9), so a moved curve vertex stays fixed in the improvement, and 1e-4 of the guarantee
 // that curve points lie on the surface within 1e-6.
-int separate_touching_sheets(TriMesh& mesh, double gap) {
+int separate_touching_sheets(TriMesh& mesh, double gap, PinchMode mode) {
   TriMesh separated = mesh;
   std::vector<int> moved;
-  const int split = separate_pinches(separated, gap, &moved);
+  const int split = separate_pinches(separated, gap, &moved, mode);
   if (split <= 0) return 0;
   std::vector<char> mark(separated.vertices.size(), 0);
   for (int v : moved) mark[uz(v)] = 1;
@@ -70,10 +70,18 @@ int separate_touching_sheets(TriMesh& mesh, double gap) {
   return split;
 }
 
-std::string separated_warning(int split) {
-  return "the surface touched itself at " + std::to_string(split) +
-         " vertices (material in diagonally opposite zones); the touching sheets were separated by 1e-10 of the "
-         "bounding-box diagonal";
+// Separated first; joined by a sliver where separating splits no vertex or leaves a crossing.
+// Returns the warning for the report, or empty (mesh unchanged).
+std::string resolve_touching_sheets(TriMesh& mesh, double gap) {
+  if (const int split = separate_touching_sheets(mesh, gap, PinchMode::kSeparate); split > 0)
+    return "the surface touched itself at " + std::to_string(split) +
+           " vertices (material in diagonally opposite zones); the touching sheets were separated by 1e-10 of "
+           "the bounding-box diagonal";
+  if (const int split = separate_touching_sheets(mesh, gap, PinchMode::kJoin); split > 0)
+    return "the surface touched itself at " + std::to_string(split) +
+           " vertices (material in diagonally opposite zones); the touching solids were joined there by a sliver "
+           "1e-10 of the bounding-box diagonal wide";
+  return {};
 }
 constexpr double kSewTolerance = 0.02;
 
@@ -331,8 +339,8 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       mesh = stitch_polyhedral_zones(*part, solids, 1e-10 * box.diagonal());
       MeshTopology topo = mesh_topology(mesh);
       if (!topo.manifold() && topo.boundary_edges == 0) {
-        if (const int split = separate_touching_sheets(mesh, 1e-10 * box.diagonal()); split > 0) {
-          rep.warnings.push_back(separated_warning(split));
+        if (std::string w = resolve_touching_sheets(mesh, 1e-10 * box.diagonal()); !w.empty()) {
+          rep.warnings.push_back(std::move(w));
           topo = mesh_topology(mesh);
         }
       }
@@ -636,8 +644,8 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
     check(mesh);
   }
   if (orthogonal && !topo.manifold() && topo.boundary_edges == 0) {
-    if (const int split = separate_touching_sheets(mesh, 1e-10 * diag); split > 0) {
-      rep.warnings.push_back(separated_warning(split));
+    if (std::string w = resolve_touching_sheets(mesh, 1e-10 * diag); !w.empty()) {
+      rep.warnings.push_back(std::move(w));
       check(mesh);
     }
   }

@@ -83,6 +83,17 @@ TEST(PinchSeparate, BoxesTouchingAlongAnEdge) {
   }
 }
 
+TEST(PinchSeparate, JoiningSplitsNoVertexWhereSeparatingDoes) {
+  // Paired across the empty quadrants, the faces around each end of the shared edge form one
+  // fan (A's three faces, then B's): nothing to split, so kJoin leaves the mesh to the caller's
+  // refusal; the stress seeds of recon_stress_regression_test are the converse case.
+  TriMesh m = merged(box(Vec3(-1, -1, 0), Vec3(0, 0, 1)), box(Vec3(0, 0, 0), Vec3(1, 1, 1)));
+  const TriMesh copy = m;
+  EXPECT_EQ(ps::separate_pinches(m, 1e-9, nullptr, ps::PinchMode::kJoin), 0);
+  EXPECT_EQ(m.vertices, copy.vertices);
+  EXPECT_EQ(m.faces, copy.faces);
+}
+
 TEST(PinchSeparate, BoxesTouchingAtACorner) {
   TriMesh m = merged(box(Vec3(-1, -1, -1), Vec3(0, 0, 0)), box(Vec3(0, 0, 0), Vec3(1, 1, 1)));
   ASSERT_EQ(m.vertices.size(), 15u);
