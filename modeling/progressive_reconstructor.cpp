@@ -22,6 +22,7 @@
 #include "modeling/frustum_builder.h"
 #include "modeling/polyhedral_partition.h"
 #include "modeling/mesh_topology.h"
+#include "modeling/gap_fill.h"
 #include "modeling/pinch_separate.h"
 #include "modeling/reconstruction_limits.h"
 #include "modeling/section_validate.h"
@@ -68,6 +69,23 @@ int separate_touching_sheets(TriMesh& mesh, double gap, PinchMode mode) {
   canonicalize(separated);
   mesh = std::move(separated);
   return split;
+}
+
+// Planar gaps left by the stitching (gap_fill.h) closed, when the added faces cross nothing and
+// the surface is then closed and consistently oriented (it may still be pinched: see below).
+// Returns the warning for the report, or empty (mesh unchanged).
+std::string fill_stitch_gaps(TriMesh& mesh, double plane_tol) {
+  TriMesh filled = mesh;
+  std::vector<int> added;
+  const int loops = fill_planar_gaps(filled, plane_tol, &added);
+  if (loops <= 0) return {};
+  if (!intersecting_face_pairs(filled.vertices, filled.faces, added).empty()) return {};
+  const MeshTopology t = mesh_topology(filled);
+  if (!t.closed || !t.consistently_oriented) return {};
+  canonicalize(filled);
+  mesh = std::move(filled);
+  return "the stitching of zone faces left " + std::to_string(loops) +
+         " planar gap(s); each was closed by its plane's region inside it";
 }
 
 // Separated first; joined by a sliver where separating splits no vertex or leaves a crossing.
@@ -338,6 +356,12 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       t = Clock::now();
       mesh = stitch_polyhedral_zones(*part, solids, 1e-10 * box.diagonal());
       MeshTopology topo = mesh_topology(mesh);
+      if (topo.boundary_edges > 0) {
+        if (std::string w = fill_stitch_gaps(mesh, 1e-9 * box.diagonal()); !w.empty()) {
+          rep.warnings.push_back(std::move(w));
+          topo = mesh_topology(mesh);
+        }
+      }
       if (!topo.manifold() && topo.boundary_edges == 0) {
         if (std::string w = resolve_touching_sheets(mesh, 1e-10 * box.diagonal()); !w.empty()) {
           rep.warnings.push_back(std::move(w));
@@ -642,6 +666,12 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
     }
   } else {
     check(mesh);
+  }
+  if (orthogonal && topo.boundary_edges > 0) {
+    if (std::string w = fill_stitch_gaps(mesh, 1e-9 * diag); !w.empty()) {
+      rep.warnings.push_back(std::move(w));
+      check(mesh);
+    }
   }
   if (orthogonal && !topo.manifold() && topo.boundary_edges == 0) {
     if (std::string w = resolve_touching_sheets(mesh, 1e-10 * diag); !w.empty()) {
