@@ -159,7 +159,11 @@ double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
 
 void curve_flags(const TriMesh& m, const SectionSet& s, double tol, std::vector<bool>& on_curve,
                  std::vector<std::array<int, 2>>& edges) {
+  // Both outputs are replaced: the checks run again after a repair renumbers the vertices, and
+  // edges appended to the first run's list named vertices of the unrepaired mesh (the
+  // improvement then refused the result: "fixed edge ... is not an edge of the mesh").
   on_curve.assign(m.vertices.size(), false);
+  edges.clear();
   std::vector<std::vector<int>> curves_of(m.vertices.size());
   for (std::size_t ci = 0; ci < s.curves.size(); ++ci) {
     const auto& c = s.curves[ci];
