@@ -58,13 +58,8 @@ int fill_planar_gaps(TriMesh& mesh, double plane_tol, std::vector<int>* added) {
     std::vector<Vec3> corners;
     corners.reserve(loop.size());
     for (int v : loop) corners.push_back(mesh.vertices[uz(v)]);
-    Vec3 normal = Vec3::Zero(), centre = Vec3::Zero();
-    for (std::size_t i = 0; i < corners.size(); ++i) {
-      const Vec3& p = corners[i];
-      const Vec3& q = corners[(i + 1) % corners.size()];
-      normal += Vec3((p.y() - q.y()) * (p.z() + q.z()), (p.z() - q.z()) * (p.x() + q.x()), (p.x() - q.x()) * (p.y() + q.y()));
-      centre += p;
-    }
+    Vec3 normal = newell_normal(corners), centre = Vec3::Zero();
+    for (const Vec3& p : corners) centre += p;
     centre /= static_cast<double>(corners.size());
     const double len = normal.norm();
     if (!(len > 0.0) || !std::isfinite(len)) return -1;

@@ -240,4 +240,15 @@ MeshTopology mesh_topology(const TriMesh& mesh) {
   return t;
 }
 
+std::vector<int> faces_touching(const TriMesh& mesh, const std::vector<char>& mark) {
+  std::vector<int> out;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int v : mesh.faces[f])
+      if (mark[static_cast<std::size_t>(v)]) {
+        out.push_back(static_cast<int>(f));
+        break;
+      }
+  return out;
+}
+
 }  // namespace ps

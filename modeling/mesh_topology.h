@@ -35,4 +35,8 @@ int face_components(const TriMesh& mesh, std::vector<int>& component_of_face);
 
 double signed_volume(const TriMesh& mesh);
 
+// Indices of the faces with at least one vertex v where mark[v] != 0, in face order (the
+// query faces of intersecting_face_pairs after some vertices moved or merged).
+std::vector<int> faces_touching(const TriMesh& mesh, const std::vector<char>& mark);
+
 }  // namespace ps

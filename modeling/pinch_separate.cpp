@@ -104,9 +104,9 @@ int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved, PinchMo
       }
       // Solid wedges: each b -> a face with the next face; empty wedges (kJoin): each a -> b
       // face with the next face.
-      const bool opener = mode == PinchMode::kSeparate ? false : true;
+      const bool opener_runs_forward = mode == PinchMode::kJoin;
       for (std::size_t q = 0; q < n; ++q)
-        if (around[q].forward == opener) glue(around[q].face, around[(q + 1) % n].face);
+        if (around[q].forward == opener_runs_forward) glue(around[q].face, around[(q + 1) % n].face);
     }
     i = j;
   }

@@ -97,10 +97,8 @@ std::vector<std::array<int, 3>> triangulate_polygon_2d(const std::vector<Vec2>& 
   return out;
 }
 
-std::vector<std::array<int, 3>> triangulate_polygon_3d(const std::vector<Vec3>& corners) {
+Vec3 newell_normal(const std::vector<Vec3>& corners) {
   const std::size_t n = corners.size();
-  if (n < 3) return {};
-  // Newell normal
   Vec3 normal = Vec3::Zero();
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3& a = corners[i];
@@ -108,6 +106,13 @@ std::vector<std::array<int, 3>> triangulate_polygon_3d(const std::vector<Vec3>& 
     normal += Vec3((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
                    (a.x() - b.x()) * (a.y() + b.y()));
   }
+  return normal;
+}
+
+std::vector<std::array<int, 3>> triangulate_polygon_3d(const std::vector<Vec3>& corners) {
+  const std::size_t n = corners.size();
+  if (n < 3) return {};
+  Vec3 normal = newell_normal(corners);
   if (!(normal.norm() > 0.0)) return fan(n);
   normal.normalize();
   const Vec3 helper = std::abs(normal.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();

@@ -17,6 +17,10 @@ std::vector<std::array<int, 3>> triangulate_polygon_3d(const std::vector<Vec3>& 
 // Same, for a polygon already in 2D; counter-clockwise or clockwise.
 std::vector<std::array<int, 3>> triangulate_polygon_2d(const std::vector<Vec2>& corners);
 
+// Newell's normal of a closed polygon: twice its vector area (unnormalised; zero for a
+// degenerate polygon).
+Vec3 newell_normal(const std::vector<Vec3>& corners);
+
 // Twice the signed area (positive for counter-clockwise).
 double signed_area_2d(const std::vector<Vec2>& poly);
 

@@ -56,14 +56,7 @@ int separate_touching_sheets(TriMesh& mesh, double gap, PinchMode mode) {
   if (split <= 0) return 0;
   std::vector<char> mark(separated.vertices.size(), 0);
   for (int v : moved) mark[uz(v)] = 1;
-  std::vector<int> around;
-  for (std::size_t f = 0; f < separated.faces.size(); ++f)
-    for (int v : separated.faces[f])
-      if (mark[uz(v)]) {
-        around.push_back(static_cast<int>(f));
-        break;
-      }
-  if (!intersecting_face_pairs(separated.vertices, separated.faces, around).empty()) return 0;
+  if (!intersecting_face_pairs(separated.vertices, separated.faces, faces_touching(separated, mark)).empty()) return 0;
   const MeshTopology t = mesh_topology(separated);
   if (!t.closed || !t.manifold() || !t.consistently_oriented) return 0;
   canonicalize(separated);
@@ -100,6 +93,32 @@ std::string resolve_touching_sheets(TriMesh& mesh, double gap) {
            " vertices (material in diagonally opposite zones); the touching solids were joined there by a sliver "
            "1e-10 of the bounding-box diagonal wide";
   return {};
+}
+
+// The repairs of a stitched surface given its topology `t`, for both kinds of zones: planar
+// gaps filled (1e-9 of the diagonal `diag` as plane tolerance), then touching sheets resolved
+// (a gap of 1e-10 of it), each reported in `warnings`. Returns whether the mesh changed (the
+// caller then checks it again).
+bool repair_stitched_surface(TriMesh& mesh, const MeshTopology& t, double diag, std::vector<std::string>& warnings) {
+  bool changed = false;
+  int boundary_edges = t.boundary_edges;
+  bool manifold = t.manifold();
+  if (boundary_edges > 0) {
+    if (std::string w = fill_stitch_gaps(mesh, 1e-9 * diag); !w.empty()) {
+      warnings.push_back(std::move(w));
+      const MeshTopology filled = mesh_topology(mesh);
+      boundary_edges = filled.boundary_edges;
+      manifold = filled.manifold();
+      changed = true;
+    }
+  }
+  if (!manifold && boundary_edges == 0) {
+    if (std::string w = resolve_touching_sheets(mesh, 1e-10 * diag); !w.empty()) {
+      warnings.push_back(std::move(w));
+      changed = true;
+    }
+  }
+  return changed;
 }
 constexpr double kSewTolerance = 0.02;
 
@@ -360,18 +379,7 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       t = Clock::now();
       mesh = stitch_polyhedral_zones(*part, solids, 1e-10 * box.diagonal());
       MeshTopology topo = mesh_topology(mesh);
-      if (topo.boundary_edges > 0) {
-        if (std::string w = fill_stitch_gaps(mesh, 1e-9 * box.diagonal()); !w.empty()) {
-          rep.warnings.push_back(std::move(w));
-          topo = mesh_topology(mesh);
-        }
-      }
-      if (!topo.manifold() && topo.boundary_edges == 0) {
-        if (std::string w = resolve_touching_sheets(mesh, 1e-10 * box.diagonal()); !w.empty()) {
-          rep.warnings.push_back(std::move(w));
-          topo = mesh_topology(mesh);
-        }
-      }
+      if (repair_stitched_surface(mesh, topo, box.diagonal(), rep.warnings)) topo = mesh_topology(mesh);
       if (!topo.closed || !topo.manifold() || !topo.consistently_oriented) {
         failure = "the stitched surface is not a closed, oriented 2-manifold (" + topo.problem + ")";
       } else {
@@ -671,18 +679,8 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
   } else {
     check(mesh);
   }
-  if (orthogonal && topo.boundary_edges > 0) {
-    if (std::string w = fill_stitch_gaps(mesh, 1e-9 * diag); !w.empty()) {
-      rep.warnings.push_back(std::move(w));
-      check(mesh);
-    }
-  }
-  if (orthogonal && !topo.manifold() && topo.boundary_edges == 0) {
-    if (std::string w = resolve_touching_sheets(mesh, 1e-10 * diag); !w.empty()) {
-      rep.warnings.push_back(std::move(w));
-      check(mesh);
-    }
-  }
+  // (The polyhedral path repaired its surface before its own self-intersection test.)
+  if (orthogonal && repair_stitched_surface(mesh, topo, diag, rep.warnings)) check(mesh);
   if (!topo.closed || !topo.manifold())
     return Result<TriMesh>::error("reconstruction failed: the stitched surface is not a closed 2-manifold (" +
                                   topo.problem + ")");

@@ -4,6 +4,7 @@
 #include "modeling/zone_stitch.h"
 
 #include "modeling/face_intersections.h"
+#include "modeling/mesh_topology.h"
 #include "modeling/radix_sort.h"
 #include "modeling/section_validate.h"
 
@@ -398,17 +399,7 @@ bool repair_close_vertices(TriMesh& m, double tol) {
       }
   }
   if (!any) return true;
-  auto around = [](const TriMesh& mesh, const std::vector<char>& mark) {
-    std::vector<int> q;
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
-      for (int v : mesh.faces[f])
-        if (mark[uz(v)]) {
-          q.push_back(static_cast<int>(f));
-          break;
-        }
-    return q;
-  };
-  if (intersecting_face_pairs(m.vertices, m.faces, around(m, close)).empty()) return true;
+  if (intersecting_face_pairs(m.vertices, m.faces, faces_touching(m, close)).empty()) return true;
   TriMesh merged = apply_merge(m, parent);
   // apply_merge numbers the roots in index order; mark the images of the merged vertices.
   std::vector<int> image(n, -1);
@@ -418,7 +409,7 @@ bool repair_close_vertices(TriMesh& m, double tol) {
   std::vector<char> mark(merged.vertices.size(), 0);
   for (std::size_t v = 0; v < n; ++v)
     if (close[v]) mark[uz(image[uz(find(static_cast<int>(v)))])] = 1;
-  const bool clean = intersecting_face_pairs(merged.vertices, merged.faces, around(merged, mark)).empty();
+  const bool clean = intersecting_face_pairs(merged.vertices, merged.faces, faces_touching(merged, mark)).empty();
   m = std::move(merged);
   canonicalize(m);
   return clean;
