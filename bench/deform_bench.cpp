@@ -184,6 +184,9 @@ Timing run_ours(const Setup& s, ps::DeformDomain domain, double lambda) {
     std::printf("    [mesh %.1f build %.1f factor %.1f initial %.1f iterations %.1f (%d) [local %.1f solve %.1f energy %.1f] nnz %lld L %lld nodes %d]\n",
                 q.mesh_ms, q.build_ms, q.factor_ms, q.initial_solve_ms, it, q.iterations, q.local_ms, q.solve_ms, q.energy_ms, q.matrix_nonzeros,
                 q.factor_nonzeros, q.nodes);
+    std::printf("    [energies");
+    for (double e : q.energies) std::printf(" %.6g", e);
+    std::printf("]\n");
   }
   const double c2 = cpu_ms();
   const auto t2 = Clock::now();

@@ -179,6 +179,7 @@ struct EdgeGraphDeformer::Impl {
     Vec3 delta = Vec3::Zero();  // rest Laplacian (Eq. 5.1)
     Vec3 normal = Vec3::Zero();  // rest normal (unit) of the incident faces
     double normal_weight = 0.0;  // weight of the normal in the rotation fit
+    double rest_norm = 0.0;      // sum_j w+_ij |e_ij|^2, the denominator of the optimal scale
   };
   std::vector<Node> nodes;
   std::vector<std::array<int, 2>> arc_v;
@@ -186,6 +187,7 @@ struct EdgeGraphDeformer::Impl {
   std::vector<double> arc_w_plus;
   std::vector<double> arc_w;  // signed w_ij (Laplacian)
   std::vector<Vec3> arc_rest;
+  std::vector<Vec3> arc_wrest;  // w+_ij e_ij, the arc's share of the covariance
   std::vector<int> node_faces;                 // into ref_faces
   std::vector<Eigen::Quaterniond> rot;         // R_i of the last local step, per node
   // Nodes and faces the local step reads (active nodes first, then their other neighbours), and
@@ -223,17 +225,24 @@ struct EdgeGraphDeformer::Impl {
   void compute_positions() {
     ypos.resize(static_cast<Eigen::Index>(ref_v.size()), 3);
     fnorm.resize(static_cast<Eigen::Index>(ref_faces.size()), 3);
-    parallel_loop(tbb::blocked_range<std::size_t>(0, ref_v.size(), 1024), [&](const auto& range) {
+    auto positions = [&](const tbb::blocked_range<std::size_t>& range) {
       for (std::size_t r = range.begin(); r != range.end(); ++r) ypos.row(static_cast<Eigen::Index>(r)) = node_pos(ref_v[r], ref_c[r]);
-    });
-    parallel_loop(tbb::blocked_range<std::size_t>(0, ref_faces.size(), 1024), [&](const auto& range) {
+    };
+    auto normals = [&](const tbb::blocked_range<std::size_t>& range) {
       for (std::size_t f = range.begin(); f != range.end(); ++f) {
         const auto& tri = ref_faces[f];
         const Vec3 p0 = x.row(tri[0]).transpose();
         fnorm.row(static_cast<Eigen::Index>(f)) =
             (Vec3(x.row(tri[1]).transpose()) - p0).cross(Vec3(x.row(tri[2]).transpose()) - p0).transpose();
       }
-    });
+    };
+    // A few flops per row: below kSerialRows rows a parallel loop costs more in hand-overs
+    // (waking the other thread, twice per local step) than it saves.
+    constexpr std::size_t kSerialRows = 16384;
+    if (ref_v.size() < kSerialRows) positions(tbb::blocked_range<std::size_t>(0, ref_v.size()));
+    else parallel_loop(tbb::blocked_range<std::size_t>(0, ref_v.size(), 1024), positions);
+    if (ref_faces.size() < kSerialRows) normals(tbb::blocked_range<std::size_t>(0, ref_faces.size()));
+    else parallel_loop(tbb::blocked_range<std::size_t>(0, ref_faces.size(), 1024), normals);
   }
 
   // Unit normal of the node's faces (after compute_positions).
@@ -265,7 +274,7 @@ struct EdgeGraphDeformer::Impl {
               const auto ku = static_cast<std::size_t>(k);
               const Vec3 e_new = (yi - ypos.row(arc_ref[ku])).transpose();
               if (k - nd.arc_begin < kCache) cache[k - nd.arc_begin] = e_new;
-              s_cov.noalias() += arc_w_plus[ku] * arc_rest[ku] * e_new.transpose();
+              s_cov.noalias() += arc_wrest[ku] * e_new.transpose();
               lap_new += arc_w[ku] * e_new;
             }
             // The node's normal joins the fit so a node whose 1-form spans less than a plane
@@ -274,14 +283,14 @@ struct EdgeGraphDeformer::Impl {
             s_cov += nd.normal_weight * nd.normal * n_new.transpose();
             // Warm-started from the node's rotation of the previous local step (rotation_fit.h).
             const Eigen::Matrix3d r = fit_rotation_from(s_cov, rot[a]);
-            double num = 0.0, den = 0.0;
+            double num = 0.0;
+            const double den = nd.rest_norm;
             for (int k = nd.arc_begin; k < nd.arc_end; ++k) {
               const auto ku = static_cast<std::size_t>(k);
               const Vec3 re = r * arc_rest[ku];
               const Vec3 e_new = k - nd.arc_begin < kCache ? cache[k - nd.arc_begin]
                                                            : Vec3((yi - ypos.row(arc_ref[ku])).transpose());
               num += arc_w_plus[ku] * e_new.dot(re);
-              den += arc_w_plus[ku] * arc_rest[ku].squaredNorm();
               t.row(k) = re.transpose();
               energy_acc += row_weight[k] * (e_new - re).squaredNorm();
             }
@@ -318,28 +327,50 @@ struct EdgeGraphDeformer::Impl {
   // (P A P^T = L D L^T). Eigen's SimplicialLDLT::solve runs each triangular solve once per
   // right-hand-side column; with b in row-major order one pass over L serves all three
   // coordinates, so L is read twice per solve instead of six times.
-  MatX3 permuted;
+  std::vector<double> permuted;
   void solve_in_place(MatX3& b) {
     const SpCol& l = solver.matrixL().nestedExpression();  // strictly lower part, unit diagonal
     const auto& d = solver.vectorD();
     const auto& perm = solver.permutationP().indices();
     const Eigen::Index n = b.rows();
-    MatX3& z = permuted;
-    z.resize(n, 3);
-    for (Eigen::Index i = 0; i < n; ++i) z.row(perm(i)) = b.row(i);
+    // Raw compressed storage: Eigen's LDLT keeps L compressed, one column per outer slice,
+    // the diagonal not stored (it is 1); z is n x 3, row-major.
+    const int* outer = l.outerIndexPtr();
+    const int* inner = l.innerIndexPtr();
+    const double* val = l.valuePtr();
+    permuted.resize(static_cast<std::size_t>(n) * 3);
+    double* z = permuted.data();
+    const double* bp = b.data();
+    for (Eigen::Index i = 0; i < n; ++i) {
+      double* zi = z + 3 * perm(i);
+      zi[0] = bp[3 * i], zi[1] = bp[3 * i + 1], zi[2] = bp[3 * i + 2];
+    }
     for (Eigen::Index j = 0; j < n; ++j) {
-      const Eigen::RowVector3d zj = z.row(j);
-      for (SpCol::InnerIterator it(l, j); it; ++it)
-        if (it.index() > j) z.row(it.index()) -= it.value() * zj;
+      const double z0 = z[3 * j], z1 = z[3 * j + 1], z2 = z[3 * j + 2];
+      for (int p = outer[j]; p < outer[j + 1]; ++p) {
+        double* zi = z + 3 * inner[p];
+        const double v = val[p];
+        zi[0] -= v * z0, zi[1] -= v * z1, zi[2] -= v * z2;
+      }
     }
-    for (Eigen::Index j = 0; j < n; ++j) z.row(j) /= d(j);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double dj = d(j);
+      z[3 * j] /= dj, z[3 * j + 1] /= dj, z[3 * j + 2] /= dj;
+    }
     for (Eigen::Index j = n - 1; j >= 0; --j) {
-      Eigen::RowVector3d acc = z.row(j);
-      for (SpCol::InnerIterator it(l, j); it; ++it)
-        if (it.index() > j) acc -= it.value() * z.row(it.index());
-      z.row(j) = acc;
+      double a0 = z[3 * j], a1 = z[3 * j + 1], a2 = z[3 * j + 2];
+      for (int p = outer[j]; p < outer[j + 1]; ++p) {
+        const double* zi = z + 3 * inner[p];
+        const double v = val[p];
+        a0 -= v * zi[0], a1 -= v * zi[1], a2 -= v * zi[2];
+      }
+      z[3 * j] = a0, z[3 * j + 1] = a1, z[3 * j + 2] = a2;
     }
-    for (Eigen::Index i = 0; i < n; ++i) b.row(i) = z.row(perm(i));
+    double* out = b.data();
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double* zi = z + 3 * perm(i);
+      out[3 * i] = zi[0], out[3 * i + 1] = zi[1], out[3 * i + 2] = zi[2];
+    }
   }
 
   double energy() const {
@@ -550,6 +581,7 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
   s.arc_w_plus.clear();
   s.arc_w.clear();
   s.arc_rest.clear();
+  s.arc_wrest.clear();
   s.node_faces.clear();
   s.ref_v.clear();
   s.ref_c.clear();
@@ -569,6 +601,7 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
     s.arc_w_plus.reserve(n_arcs_est);
     s.arc_w.reserve(n_arcs_est);
     s.arc_rest.reserve(n_arcs_est);
+    s.arc_wrest.reserve(n_arcs_est);
     s.node_faces.reserve(n_faces_est);
     s.ref_v.reserve(active.size() * 2);
     s.ref_c.reserve(active.size() * 2);
@@ -621,8 +654,12 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
     }
     nd.face_end = static_cast<int>(s.node_faces.size());
     double wl = 0.0;
-    for (int k = nd.arc_begin; k < nd.arc_end; ++k)
-      wl += s.arc_w_plus[static_cast<std::size_t>(k)] * s.arc_rest[static_cast<std::size_t>(k)].squaredNorm();
+    for (int k = nd.arc_begin; k < nd.arc_end; ++k) {
+      const auto ku = static_cast<std::size_t>(k);
+      wl += s.arc_w_plus[ku] * s.arc_rest[ku].squaredNorm();
+      s.arc_wrest.push_back(s.arc_w_plus[ku] * s.arc_rest[ku]);
+    }
+    nd.rest_norm = wl;
     nd.normal_weight = nd.arc_end > nd.arc_begin ? wl / (nd.arc_end - nd.arc_begin) : 0.0;
     area_sum += g.area[iu];
     lambdas.push_back(node_lambda(iu));
@@ -634,17 +671,28 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
   const int m = s.rows();
   s.row_weight.resize(m);
   // Each row of J as a short list of (local vertex, coefficient), duplicates merged, zeros
-  // dropped, sorted by vertex: J in CSR form (row_begin, entries). Arc rows come in node order,
-  // so row k is arc k; the Laplacian rows follow.
-  std::vector<int> row_begin(static_cast<std::size_t>(m) + 1, 0);
-  std::vector<RowEntry> entries;
-  entries.reserve(static_cast<std::size_t>(n_arcs) * 3 + s.nodes.size() * 6);
+  // dropped, sorted by vertex, written straight into J_f (free columns) and J_k (known). Arc
+  // rows come in node order, so row k is arc k; the Laplacian rows follow.
+  // J split by column (free | known), the right-hand-side operator M = J_f^T W, the normal
+  // matrix A = J_f^T W J_f (lower triangle) and A_fk = J_f^T W J_k are written straight into
+  // compressed storage. Triplets and setFromTriplets cost about 4x as much here (their sort and
+  // duplicate merge over ~1M entries at 9.2k free vertices), and this is the stage that decides
+  // whether a new region is interactive.
+  CsrBuilder jf_b, jk_b;
+  jf_b.start(m, static_cast<std::size_t>(n_arcs) * 3 + s.nodes.size() * 6);
+  jk_b.start(m, 0);
   std::vector<RowEntry> row;
-  auto flush_row = [&](std::size_t r) {
-    std::sort(row.begin(), row.end(), [](const RowEntry& x, const RowEntry& y) { return x.v < y.v; });
-    for (const auto& e : row)
-      if (e.c != 0.0) entries.push_back(e);
-    row_begin[r + 1] = static_cast<int>(entries.size());
+  auto flush_row = [&] {
+    // Insertion sort: rows hold 2 to about 12 entries.
+    for (std::size_t i = 1; i < row.size(); ++i)
+      for (std::size_t j = i; j > 0 && row[j].v < row[j - 1].v; --j) std::swap(row[j], row[j - 1]);
+    for (const auto& e : row) {
+      if (e.c == 0.0) continue;
+      if (e.v < s.n_free) jf_b.push(e.v, e.c);
+      else jk_b.push(e.v - s.n_free, e.c);
+    }
+    jf_b.end_row();
+    jk_b.end_row();
   };
   for (std::size_t a = 0; a < s.nodes.size(); ++a) {
     const Impl::Node& nd = s.nodes[a];
@@ -656,7 +704,7 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
         add_to_row(row, nd.v[q], nd.c[q]);
         add_to_row(row, s.arc_v[ku][q], -s.arc_c[ku][q]);
       }
-      flush_row(ku);
+      flush_row();
       s.row_weight[k] = lambdas[a] * s.arc_w_plus[ku];
     }
     s.row_weight[n_arcs + static_cast<Eigen::Index>(a)] = (1.0 - lambdas[a]) * area_mean;
@@ -672,24 +720,7 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
       wsum += s.arc_w[ku];
     }
     for (std::size_t q = 0; q < 2; ++q) add_to_row(row, nd.v[q], wsum * nd.c[q]);
-    flush_row(static_cast<std::size_t>(n_arcs) + a);
-  }
-  // === J split by column (free | known), the right-hand-side operator M = J_f^T W, the normal
-  // matrix A = J_f^T W J_f (lower triangle) and A_fk = J_f^T W J_k, written straight into
-  // compressed storage. Triplets and setFromTriplets cost about 4x as much here (their sort and
-  // duplicate merge over ~1M entries at 9.2k free vertices), and this is the stage that decides
-  // whether a new region is interactive.
-  CsrBuilder jf_b, jk_b;
-  jf_b.start(m, entries.size());
-  jk_b.start(m, 0);
-  for (int r = 0; r < m; ++r) {
-    for (int pe = row_begin[static_cast<std::size_t>(r)]; pe < row_begin[static_cast<std::size_t>(r) + 1]; ++pe) {
-      const RowEntry& e = entries[static_cast<std::size_t>(pe)];
-      if (e.v < s.n_free) jf_b.push(e.v, e.c);
-      else jk_b.push(e.v - s.n_free, e.c);
-    }
-    jf_b.end_row();
-    jk_b.end_row();
+    flush_row();
   }
   jf_b.finish(s.jf, m, s.n_free);
   jk_b.finish(s.jk, m, s.n_known);

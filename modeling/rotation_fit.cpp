@@ -46,13 +46,16 @@ Eigen::Matrix3d fit_rotation(const Eigen::Matrix3d& s) {
 
 // === Newton's method on SO(3), warm-started (see the header for the derivation)
 bool refine_rotation(const Eigen::Matrix3d& s, Eigen::Quaterniond& q) {
+  // The step theta = H^-1 g does not depend on the scale of S (g scales like S, H^-1 like
+  // 1 / S), so S is used as it is and only the thresholds, stated for |S| = 1, are scaled:
+  // h00 by |S|, the 2x2 minor by |S|^2, det H by |S|^3.
   const double scale = s.cwiseAbs().maxCoeff();
   if (!(scale > 0.0)) return false;
-  const Eigen::Matrix3d sn = s / scale;
+  const double min_h = 1e-4 * scale, min_minor = 1e-8 * scale * scale, min_det = 1e-12 * scale * scale * scale;
   Eigen::Quaterniond cur = q;
   constexpr int kMaxIterations = 8;
   for (int it = 0; it < kMaxIterations; ++it) {
-    const Eigen::Matrix3d c = cur.toRotationMatrix() * sn;
+    const Eigen::Matrix3d c = cur.toRotationMatrix() * s;
     const Eigen::Vector3d g(c(1, 2) - c(2, 1), c(2, 0) - c(0, 2), c(0, 1) - c(1, 0));
     const double tr = c.trace();
     const double h00 = tr - c(0, 0), h11 = tr - c(1, 1), h22 = tr - c(2, 2);
@@ -64,11 +67,12 @@ bool refine_rotation(const Eigen::Matrix3d& s, Eigen::Quaterniond& q) {
     const double det = h00 * a00 + h01 * a01 + h02 * a02;
     // Thresholds relative to |S| = 1: H's eigenvalues are sums of two singular values, so this
     // refuses S whose two smallest singular values sum to about 1e-4 (near rank 1).
-    if (!(h00 > 1e-4 && a22 > 1e-8 && det > 1e-12)) return false;
+    if (!(h00 > min_h && a22 > min_minor && det > min_det)) return false;
+    const double inv_det = 1.0 / det;
     const Eigen::Vector3d theta = Eigen::Vector3d(a00 * g.x() + a01 * g.y() + a02 * g.z(),
                                                   a01 * g.x() + a11 * g.y() + a12 * g.z(),
-                                                  a02 * g.x() + a12 * g.y() + a22 * g.z()) /
-                                  det;
+                                                  a02 * g.x() + a12 * g.y() + a22 * g.z()) *
+                                  inv_det;
     const double t2 = theta.squaredNorm();
     if (!(t2 <= 1.0)) return false;
     cur = (Eigen::Quaterniond(1.0, 0.5 * theta.x(), 0.5 * theta.y(), 0.5 * theta.z()) * cur).normalized();

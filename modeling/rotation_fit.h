@@ -21,7 +21,8 @@
 //     and leaves q unchanged; the caller then uses fit_rotation. It returns true once a step is
 //     below 1e-7 rad (what remains is O(step^2), below double precision of R).
 //
-// Both work on S scaled to unit max-norm, so they are invariant to the scale of the input.
+// Both are invariant to the scale of S: fit_rotation works on S scaled to unit max-norm,
+// refine_rotation on S itself with its thresholds scaled (its step does not depend on the scale).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
