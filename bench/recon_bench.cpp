@@ -52,9 +52,9 @@ int main(int argc, char** argv) {
     stitch.push_back(rep.timings.stitch_ms);
     total.push_back(rep.timings.total_ms);
     if (r == 0)
-      std::printf("zones %d (empty %d, end %d, body %d), primitives %d, mesh %zu vertices %zu faces\n", rep.zones,
-                  rep.empty_zones, rep.end_zones, rep.body_zones, rep.primitives, m->vertices.size(),
-                  m->faces.size());
+      std::printf("zones %d (empty %d, end %d, body %d; filled by whole-face prisms %d), primitives %d, mesh %zu vertices %zu faces\n",
+                  rep.zones, rep.empty_zones, rep.end_zones, rep.body_zones, rep.zones_filled, rep.primitives,
+                  m->vertices.size(), m->faces.size());
   }
   std::printf("full reconstruction, median of %d (ms): validate %.1f  partition %.1f  primitives %.1f  union %.1f  "
               "stitch %.1f  total %.1f (p95 %.1f)\n",
@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
     box.max = Vec3::Constant(2.0);
     pr.set_box(box);
     if (!pr.update(model)) return;
-    std::vector<double> add_ms, remove_ms, recomputed;
+    std::vector<double> add_ms, remove_ms, recomputed, filled;
     std::vector<double> s_validate, s_partition, s_primitives, s_union, s_stitch;
     for (int r = 0; r < reps * 3; ++r) {
       ReconstructReport a;
@@ -85,13 +85,14 @@ int main(int argc, char** argv) {
       s_union.push_back(a.timings.union_ms);
       s_stitch.push_back(a.timings.stitch_ms);
       recomputed.push_back(a.zones_recomputed);
+      filled.push_back(a.zones_filled);
       ReconstructReport b;
       if (!pr.update(model, &b)) return;
       remove_ms.push_back(b.timings.total_ms);
     }
-    std::printf("progressive add (%s): median %.1f ms, p95 %.1f ms, zones recomputed %.0f; remove: median %.1f ms\n",
+    std::printf("progressive add (%s): median %.1f ms, p95 %.1f ms, zones recomputed %.0f (filled %.0f); remove: median %.1f ms\n",
                 what, percentile(add_ms, 0.5), percentile(add_ms, 0.95), percentile(recomputed, 0.5),
-                percentile(remove_ms, 0.5));
+                percentile(filled, 0.5), percentile(remove_ms, 0.5));
     std::printf("  add, stage medians (ms): validate %.1f  partition %.1f  primitives %.1f  union %.1f  stitch and checks %.1f\n",
                 percentile(s_validate, 0.5), percentile(s_partition, 0.5), percentile(s_primitives, 0.5),
                 percentile(s_union, 0.5), percentile(s_stitch, 0.5));

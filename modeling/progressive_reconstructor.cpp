@@ -28,6 +28,7 @@
 #include "modeling/section_validate.h"
 #include "modeling/zone_partition.h"
 #include "modeling/zone_stitch.h"
+#include "modeling/zone_box_union.h"
 #include "modeling/zone_union.h"
 
 namespace ps {
@@ -506,9 +507,17 @@ Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSectio
     if (!hit) todo.push_back(static_cast<int>(z));
   }
   std::vector<std::string> errors(todo.size());
-  std::atomic<int> done{0};
+  std::atomic<int> done{0}, filled_zones{0};
   parallel_over(todo.size(), options_.threads, [&](std::size_t i) {
     const std::size_t z = uz(todo[i]);
+    // A zone its six whole-face prisms fill is its box (zone_box_union.h): no exact union.
+    if (auto filled = filled_zone_union(part->zones[z], prims[z])) {
+      solids[z] = std::move(*filled);
+      canonicalize(solids[z]);
+      ++filled_zones;
+      ++done;
+      return;
+    }
     // An intermediate union can be non-manifold (two primitives touching along an edge)
     // even when the whole union is not; retry in other fixed orders (deterministic).
     auto u = union_solids(prims[z].solids);
@@ -533,6 +542,7 @@ Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSectio
   for (const auto& e : errors)
     if (!e.empty()) return Result<TriMesh>::error("reconstruction failed: " + e);
   rep.zones_recomputed = static_cast<int>(todo.size());
+  rep.zones_filled = filled_zones.load();
   rep.timings.union_ms = ms_since(t);
   progress("union", 1.0);
 

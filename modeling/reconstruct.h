@@ -39,6 +39,7 @@ struct ReconstructReport {
   int zones = 0, empty_zones = 0, end_zones = 0, body_zones = 0;
   int primitives = 0;
   int zones_recomputed = 0;  // zones whose union was computed (not taken from the cache)
+  int zones_filled = 0;      // of those, zones filled by six whole-face prisms: their box (zone_box_union.h)
   int components = 0;
   bool improved = false;
   StageTimings timings;
