@@ -213,12 +213,17 @@ int split_t_junctions(TriMesh& m, double tol) {
       const auto& [corner, pts] = it->second.front();
       const Face f = m.faces[fi];
       const int a = f[uz(corner)], b = f[uz((corner + 1) % 3)], c = f[uz((corner + 2) % 3)];
+      // A face whose own apex c lies on the split edge (a flat sliver, stress seed 250) would
+      // give faces with a repeated corner; those are left out, which removes the sliver.
+      auto keep = [&](int p0, int p1) {
+        if (p0 != p1 && p0 != c && p1 != c) faces.push_back({p0, p1, c});
+      };
       int prev = a;
       for (const auto& [t, v] : pts) {
-        faces.push_back({prev, v, c});
+        keep(prev, v);
         prev = v;
       }
-      faces.push_back({prev, b, c});
+      keep(prev, b);
     }
     m.faces = std::move(faces);
   }
