@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "modeling/edge_graph.h"
+#include "modeling/parallel_over.h"
 #include "modeling/rotation_fit.h"
 
 namespace ps {
@@ -36,10 +37,9 @@ constexpr std::size_t kGrain = 512;
 // === Parallel loops
 // TBB's parallel_for / parallel_reduce, except in ThreadSanitizer builds: Debian's libtbb is not
 // instrumented, so its internal hand-offs are invisible to TSan and every task would look racy
-// (as for parallel_over in progressive_reconstructor.cpp). There the range is cut into chunks
-// of its grain size, run on std::threads taking chunk indices from an atomic counter (creation
-// and join are synchronisation TSan sees), so what TSan reports is about the loop bodies and
-// the state they share. A reduction keeps one partial per chunk and joins them in chunk order
+// (parallel_over.h). There the range is cut into chunks of its grain size, run by parallel_over
+// (std::threads taking chunk indices from an atomic counter in those builds), so what TSan
+// reports is about the loop bodies and the state they share. A reduction keeps one partial per chunk and joins them in chunk order
 // (deterministic too, though not the same order as TBB's deterministic reduce).
 #if defined(__SANITIZE_THREAD__)
 template <class Index>
@@ -51,24 +51,13 @@ std::vector<tbb::blocked_range<Index>> chunks_of(const tbb::blocked_range<Index>
   return out;
 }
 
-template <class Task>
-void run_on_threads(std::size_t n, const Task& task) {
-  const std::size_t k = std::min<std::size_t>(n, std::max(1u, std::thread::hardware_concurrency()));
-  std::atomic<std::size_t> next{0};
-  std::vector<std::thread> pool;
-  for (std::size_t t = 0; t < k; ++t)
-    pool.emplace_back([&] {
-      for (std::size_t i = next++; i < n; i = next++) task(i);
-    });
-  for (auto& th : pool) th.join();
-}
 #endif
 
 template <class Index, class Body>
 void parallel_loop(const tbb::blocked_range<Index>& all, const Body& body) {
 #if defined(__SANITIZE_THREAD__)
   const auto chunks = chunks_of(all);
-  run_on_threads(chunks.size(), [&](std::size_t i) { body(chunks[i]); });
+  parallel_over(chunks.size(), 0, [&](std::size_t i) { body(chunks[i]); });
 #else
   tbb::parallel_for(all, body);
 #endif
@@ -80,7 +69,7 @@ double parallel_sum(const tbb::blocked_range<Index>& all, double identity, const
 #if defined(__SANITIZE_THREAD__)
   const auto chunks = chunks_of(all);
   std::vector<double> partial(chunks.size(), identity);
-  run_on_threads(chunks.size(), [&](std::size_t i) { partial[i] = body(chunks[i], identity); });
+  parallel_over(chunks.size(), 0, [&](std::size_t i) { partial[i] = body(chunks[i], identity); });
   double total = identity;
   for (double p : partial) total = join(total, p);
   return total;

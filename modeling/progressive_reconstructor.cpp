@@ -4,10 +4,6 @@
 
 #include "modeling/mesh_improve.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -23,6 +19,7 @@
 #include "modeling/polyhedral_partition.h"
 #include "modeling/mesh_topology.h"
 #include "modeling/gap_fill.h"
+#include "modeling/parallel_over.h"
 #include "modeling/pinch_separate.h"
 #include "modeling/reconstruction_limits.h"
 #include "modeling/section_validate.h"
@@ -224,33 +221,6 @@ void curve_flags(const TriMesh& m, const SectionSet& s, double tol, std::vector<
     }
     if (along) edges.push_back(e);
   }
-}
-
-// === Parallel loop over zones
-// TBB's parallel_for, except in ThreadSanitizer builds: Debian's libtbb is not instrumented, so
-// its internal hand-offs are invisible to TSan and every task looks racy. There the same loop
-// runs on std::threads taking indices from an atomic counter (join is a synchronisation TSan
-// sees), so the reports that remain are about our task bodies and the state they share.
-template <class Body>
-void parallel_over(std::size_t n, int threads, const Body& body) {
-#if defined(__SANITIZE_THREAD__)
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t k = std::min<std::size_t>(n, threads > 0 ? static_cast<std::size_t>(threads) : hw);
-  std::atomic<std::size_t> next{0};
-  std::vector<std::thread> pool;
-  for (std::size_t t = 0; t < k; ++t)
-    pool.emplace_back([&] {
-      for (std::size_t i = next++; i < n; i = next++) body(i);
-    });
-  for (auto& th : pool) th.join();
-#else
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t i = r.begin(); i != r.end(); ++i) body(i);
-    });
-  });
-#endif
 }
 
 // === Scale normalisation helpers (powers of two: exact)
