@@ -1,11 +1,14 @@
 // planesketch reconstruct IN -o OUT.(obj|off|ply|stl) [--report R.json] [--no-improve] [--edits E.json]
 // Reads cross sections (contour JSON, CSL or .contour), reconstructs a closed surface and writes
 // it with a JSON report (docs: ../shared/docs/contours.md, docs/reconstruction.md).
+#include <tbb/global_control.h>
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
@@ -53,6 +56,11 @@ int run(const Options& o) {
   ps::ReconstructOptions ro;
   ro.improve = !o.no_improve;
   ro.threads = o.threads;
+  // --threads bounds every parallel loop of the command (the zone unions, and the improvement's
+  // and the final checks' self-intersection tests), not only the reconstructor's own.
+  std::optional<tbb::global_control> thread_limit;
+  if (o.threads > 0)
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(o.threads));
   // Progress for runs over a second: a line per stage on stderr once a second has passed.
   auto last = clock::now();
   std::string last_stage;

@@ -1,7 +1,7 @@
 #pragma once
 // A parallel loop over indices 0..n-1 for the modeling layer's coarse tasks (zones, chunks of
-// candidate face pairs). TBB's parallel_for in a task arena of `threads` workers (0: all
-// cores), except in ThreadSanitizer builds: Debian's libtbb is not instrumented, so its
+// candidate face pairs). TBB's parallel_for in a task arena of `threads` workers (0: the
+// caller's arena, all cores unless a tbb::global_control says otherwise), except in ThreadSanitizer builds: Debian's libtbb is not instrumented, so its
 // internal hand-offs are invisible to TSan and every task looks racy. There the same loop runs
 // on std::threads taking indices from an atomic counter (join is a synchronisation TSan sees),
 // so the reports that remain are about the task bodies and the state they share.
@@ -33,12 +33,17 @@ void parallel_over(std::size_t n, int threads, const Body& body) {
     });
   for (auto& th : pool) th.join();
 #else
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] {
+  auto loop = [&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) body(i);
     });
-  });
+  };
+  if (threads > 0) {
+    tbb::task_arena arena(threads);
+    arena.execute(loop);
+  } else {
+    loop();  // the caller's arena, or TBB's default (bounded by any tbb::global_control)
+  }
 #endif
 }
 
