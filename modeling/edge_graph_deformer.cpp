@@ -9,10 +9,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <atomic>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "modeling/edge_graph.h"
@@ -39,8 +37,9 @@ constexpr std::size_t kGrain = 512;
 // instrumented, so its internal hand-offs are invisible to TSan and every task would look racy
 // (parallel_over.h). There the range is cut into chunks of its grain size, run by parallel_over
 // (std::threads taking chunk indices from an atomic counter in those builds), so what TSan
-// reports is about the loop bodies and the state they share. A reduction keeps one partial per chunk and joins them in chunk order
-// (deterministic too, though not the same order as TBB's deterministic reduce).
+// reports is about the loop bodies and the state they share. A reduction keeps one partial per
+// chunk and joins them in chunk order (deterministic too, though not the same order as TBB's
+// deterministic reduce).
 #if defined(__SANITIZE_THREAD__)
 template <class Index>
 std::vector<tbb::blocked_range<Index>> chunks_of(const tbb::blocked_range<Index>& all) {

@@ -108,14 +108,7 @@ Status check_primitive(const TriMesh& m, std::size_t index) {
   const MeshTopology t = mesh_topology(m);
   if (!t.closed || !t.manifold() || !t.consistently_oriented)
     return Status::error(which + " is not a closed, oriented 2-manifold (" + t.problem + ")");
-  const Vec3 o = m.vertices.front();
-  double volume = 0.0;
-  for (const auto& f : m.faces) {
-    const Vec3 a = m.vertices[static_cast<std::size_t>(f[0])] - o, b = m.vertices[static_cast<std::size_t>(f[1])] - o,
-               c = m.vertices[static_cast<std::size_t>(f[2])] - o;
-    volume += a.dot(b.cross(c));
-  }
-  if (!(volume > 0)) return Status::error(which + " is inside out (negative volume)");
+  if (!(signed_volume(m, m.vertices.front()) > 0)) return Status::error(which + " is inside out (negative volume)");
   std::vector<int> all(m.faces.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
   if (!intersecting_face_pairs(m.vertices, m.faces, all).empty()) return Status::error(which + " intersects itself");

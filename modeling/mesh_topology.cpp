@@ -30,12 +30,12 @@ struct DisjointSets {
 
 }  // namespace
 
-double signed_volume(const TriMesh& mesh) {
+double signed_volume(const TriMesh& mesh, const Vec3& origin) {
   double v = 0.0;
   for (const auto& f : mesh.faces) {
-    const Vec3& a = mesh.vertices[static_cast<std::size_t>(f[0])];
-    const Vec3& b = mesh.vertices[static_cast<std::size_t>(f[1])];
-    const Vec3& c = mesh.vertices[static_cast<std::size_t>(f[2])];
+    const Vec3 a = mesh.vertices[static_cast<std::size_t>(f[0])] - origin;
+    const Vec3 b = mesh.vertices[static_cast<std::size_t>(f[1])] - origin;
+    const Vec3 c = mesh.vertices[static_cast<std::size_t>(f[2])] - origin;
     v += a.dot(b.cross(c));
   }
   return v / 6.0;

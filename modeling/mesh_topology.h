@@ -33,7 +33,10 @@ MeshTopology mesh_topology(const TriMesh& mesh);
 // Face-connected component id per face; returns the number of components.
 int face_components(const TriMesh& mesh, std::vector<int>& component_of_face);
 
-double signed_volume(const TriMesh& mesh);
+// Signed volume (> 0 for outward orientation), from the tetrahedra joining each face to
+// `origin`. The result does not depend on the origin in exact arithmetic; in doubles, an origin
+// near the mesh (one of its vertices, say) keeps the sum from cancelling far from zero.
+double signed_volume(const TriMesh& mesh, const Vec3& origin = Vec3::Zero());
 
 // Indices of the faces with at least one vertex v where mark[v] != 0, in face order (the
 // query faces of intersecting_face_pairs after some vertices moved or merged).

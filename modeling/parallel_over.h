@@ -1,10 +1,11 @@
 #pragma once
 // A parallel loop over indices 0..n-1 for the modeling layer's coarse tasks (zones, chunks of
 // candidate face pairs). TBB's parallel_for in a task arena of `threads` workers (0: the
-// caller's arena, all cores unless a tbb::global_control says otherwise), except in ThreadSanitizer builds: Debian's libtbb is not instrumented, so its
-// internal hand-offs are invisible to TSan and every task looks racy. There the same loop runs
-// on std::threads taking indices from an atomic counter (join is a synchronisation TSan sees),
-// so the reports that remain are about the task bodies and the state they share.
+// caller's arena, all cores unless a tbb::global_control says otherwise), except in
+// ThreadSanitizer builds: Debian's libtbb is not instrumented, so its internal hand-offs are
+// invisible to TSan and every task looks racy. There the same loop runs on std::threads taking
+// indices from an atomic counter (join is a synchronisation TSan sees), so the reports that
+// remain are about the task bodies and the state they share.
 //
 // body(i) may run concurrently for different i and in any order; callers that need a
 // deterministic result write into per-index slots and combine them in index order.

@@ -85,11 +85,7 @@ std::optional<TriMesh> filled_zone_union(const Zone& zone, const ZonePrimitives&
   // consistently oriented box of 8 vertices, or the exact union decides.
   const MeshTopology topo = mesh_topology(box);
   if (box.vertices.size() != 8 || !topo.closed || !topo.manifold() || !topo.consistently_oriented) return std::nullopt;
-  double volume = 0.0;
-  const Vec3 o = zone.min;
-  for (const Face& tri : box.faces)
-    volume += (box.vertices[uz(tri[0])] - o).dot((box.vertices[uz(tri[1])] - o).cross(box.vertices[uz(tri[2])] - o));
-  if (!(volume > 0.0)) return std::nullopt;
+  if (!(signed_volume(box, zone.min) > 0.0)) return std::nullopt;
   return box;
 }
 
