@@ -30,21 +30,33 @@ struct Base {
   bool is_virtual = false;
 };
 
+// Area centroid; a result outside the loop's bounding box (a near-zero area, where the cross
+// products cancel) falls back to the vertex mean, which lies in the loop's convex hull.
 Vec2 polygon_centroid(const std::vector<Vec2>& p) {
   double a = 0;
-  Vec2 c = Vec2::Zero();
+  Vec2 c = Vec2::Zero(), lo = p.front(), hi = p.front(), mean = Vec2::Zero();
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec2& u = p[i];
     const Vec2& v = p[(i + 1) % p.size()];
     const double w = u.x() * v.y() - v.x() * u.y();
     a += w;
     c += w * (u + v);
+    lo = lo.cwiseMin(u);
+    hi = hi.cwiseMax(u);
+    mean += u;
   }
-  if (std::abs(a) < 1e-300) {
-    for (const auto& q : p) c += q;
-    return c / static_cast<double>(p.size());
-  }
-  return c / (3.0 * a);
+  mean /= static_cast<double>(p.size());
+  if (std::abs(a) < 1e-300) return mean;
+  c /= 3.0 * a;
+  if (!((c.array() >= lo.array()).all() && (c.array() <= hi.array()).all())) return mean;
+  return c;
+}
+
+double polygon_diameter(const std::vector<Vec3>& poly) {
+  double d = 0;
+  for (std::size_t i = 0; i < poly.size(); ++i)
+    for (std::size_t j = i + 1; j < poly.size(); ++j) d = std::max(d, (poly[i] - poly[j]).norm());
+  return d;
 }
 
 void finish_base(Base& b) {
@@ -236,6 +248,10 @@ class Builder {
           pulled[i] = 1;
           continue;
         }
+        // A face a few ulps wide (four planes almost through one point) holds no wall: a top
+        // kept on it could only sit at the zone vertex it rounds to, often on this piece's own
+        // plane. The sub-ulp mismatch with the neighbour's wall is within the stitch's weld.
+        if (polygon_diameter(z.faces[uz(k)].polygon) <= 1e-2 * tol_) continue;
         stay[i].push_back(&part_.planes[uz(q)]);
         stay_face[i].push_back(k);
       }
@@ -330,8 +346,85 @@ class Builder {
         return Status::ok();
       }
     }
-    // === Fallback: a homothety towards interior points, which a convex zone always contains.
-    // Free points move towards the zone's centroid, points kept on a face towards that face's
+    // A fallback top is taken when its caps keep their orientation and the frustum is a valid
+    // solid.
+    auto accept_fallback = [&]() {
+      if (!caps_keep_orientation(b, top)) return false;
+      SnappedSolid solid = assemble(b, top, top_tags);
+      if (!check_solid(solid.mesh, "frustum")) return false;
+      out_[uz(b.zone)].solids.push_back(std::move(solid));
+      ++rep_.frusta;
+      ++rep_.fallback_frusta;
+      return true;
+    };
+    // === Fallback 1: one homothety of the bottom about a centre c* (ratio s < 1). Every slice
+    // of such a frustum is a scaled copy of the bottom in a parallel plane, so the frustum never
+    // intersects itself and its top cap keeps the bottom's orientation; it lies in the cone from
+    // c* over the bottom, hence in the (convex) zone when c* does. c* is the zone's centroid
+    // when no point must stay on a face, the centroid of that face when all such points stay on
+    // one face, and the midpoint of the zone edge two such faces share: a homothety about a
+    // point of a plane maps the plane to itself, so the walls kept on those faces stay there,
+    // and c* lies strictly inside every other face, so the top leaves them by (1 - s) times
+    // c*'s distance.
+    {
+      std::vector<int> kept;
+      for (const auto& sf : stay_face)
+        for (int k : sf)
+          if (std::find(kept.begin(), kept.end(), k) == kept.end()) kept.push_back(k);
+      std::sort(kept.begin(), kept.end());
+      // Candidates, first valid one wins; the last is the mean of the zone's vertices on every
+      // kept plane (three kept faces meeting at a zone vertex, two sharing only a vertex).
+      std::vector<Vec3> candidates;
+      if (kept.empty()) candidates.push_back(z.centroid);
+      if (kept.size() == 1) {
+        const auto& poly = z.faces[uz(kept[0])].polygon;
+        Vec3 m = Vec3::Zero();
+        for (const auto& p : poly) m += p;
+        candidates.push_back(m / static_cast<double>(poly.size()));
+      }
+      if (kept.size() == 2) {
+        const PolyFace& g = z.faces[uz(kept[0])];
+        const int other = z.faces[uz(kept[1])].plane;
+        for (std::size_t e = 0; e < g.polygon.size() && e < g.edge_plane.size(); ++e)
+          if (g.edge_plane[e] == other) candidates.push_back(0.5 * (g.polygon[e] + g.polygon[(e + 1) % g.polygon.size()]));
+      }
+      if (!kept.empty()) {
+        Vec3 m = Vec3::Zero();
+        int count = 0;
+        for (const auto& g : z.faces)
+          for (const auto& p : g.polygon) {
+            bool on_all = true;
+            for (int k : kept) on_all = on_all && std::abs(z.faces[uz(k)].normal.dot(p) - z.faces[uz(k)].offset) <= 1e-3 * tol_;
+            if (on_all) {
+              m += p;
+              ++count;
+            }
+          }
+        if (count > 0) candidates.push_back(m / count);
+      }
+      // c* must lie strictly inside every face it is not meant to be on (a degenerate kept
+      // face rounds to a zone vertex, which can be on this piece's own plane).
+      bool have_centre = false;
+      Vec3 cs = z.centroid;
+      for (const Vec3& cand : candidates) {
+        bool inside = true;
+        for (std::size_t k = 0; k < z.faces.size() && inside; ++k)
+          if (!std::binary_search(kept.begin(), kept.end(), static_cast<int>(k)))
+            inside = z.faces[k].normal.dot(cand) - z.faces[k].offset < -1e-3 * tol_;
+        if (inside) {
+          cs = cand;
+          have_centre = true;
+          break;
+        }
+      }
+      if (have_centre)
+        for (const double s : {0.9, 0.75, 0.6, 0.45, 0.3, 0.2, 0.1, 0.05}) {
+          for (std::size_t i = 0; i < b.pts.size(); ++i) top[i] = cs + s * (b.pts[i] - cs);
+          if (accept_fallback()) return Status::ok();
+        }
+    }
+    // === Fallback 2 (points kept on more than two faces, or on two that share no edge): free
+    // points move towards the zone's centroid, points kept on a face towards that face's
     // centroid (or the midpoint of the zone edge shared by the two faces they are kept on).
     {
       std::vector<Vec3> target(b.pts.size(), z.centroid);
@@ -356,13 +449,7 @@ class Builder {
       }
       for (double s = 0.9; s > 0.25; s -= 0.1) {
         for (std::size_t i = 0; i < b.pts.size(); ++i) top[i] = target[i] + s * (b.pts[i] - target[i]);
-        if (!caps_keep_orientation(b, top)) continue;
-        SnappedSolid solid = assemble(b, top, top_tags);
-        if (!check_solid(solid.mesh, "frustum")) continue;
-        out_[uz(b.zone)].solids.push_back(std::move(solid));
-        ++rep_.frusta;
-        ++rep_.fallback_frusta;
-        return Status::ok();
+        if (accept_fallback()) return Status::ok();
       }
     }
     return Status::error("reconstruction failed: no frustum fits the section piece on face " + std::to_string(b.face) +

@@ -85,13 +85,6 @@ Result<PolyPartition> partition_polyhedral(const ValidatedSections& vs, const Bo
     for (std::size_t fi = 0; fi < c.faces.size(); ++fi) {
       PolyFace f;
       f.polygon = c.faces[fi];
-      // Newell normal for the side; the exact plane for the value.
-      Vec3 nw = Vec3::Zero();
-      for (std::size_t i = 0; i < f.polygon.size(); ++i) {
-        const Vec3& a = f.polygon[i];
-        const Vec3& b = f.polygon[(i + 1) % f.polygon.size()];
-        nw += a.cross(b);
-      }
       if (c.face_plane[fi] >= 0) {
         f.plane = cut_id[uz(c.face_plane[fi])];
       } else {
@@ -107,7 +100,8 @@ Result<PolyPartition> partition_polyhedral(const ValidatedSections& vs, const Bo
         if (f.plane < 0) return Result<PolyPartition>::error("internal: a box face of zone " + std::to_string(zi) + " is not axis-aligned");
       }
       const Plane& pl = part.planes[uz(f.plane)];
-      const double sign = nw.dot(pl.normal) >= 0 ? 1.0 : -1.0;
+      // The side from the split that made the face (exact), not from the rounded polygon.
+      const double sign = c.face_outward[fi].dot(pl.normal) >= 0 ? 1.0 : -1.0;
       f.normal = sign * pl.normal;
       f.offset = sign * pl.offset;
       // Planes of the edges (the zone's neighbouring faces).
@@ -266,6 +260,36 @@ Result<PolyPartition> partition_polyhedral(const ValidatedSections& vs, const Bo
               if (std::abs(part.planes[uz(ep)].signed_distance(p)) <= near) t[uz(n++)] = ep;
             }
             all_tags.push_back(t);
+          }
+          // Two neighbouring points tagged with the same three planes are one exact point (the
+          // clip of a zone a few ulps wide rounds it to two doubles): keep one, or the snapped
+          // loop has a zero-length edge (Horsers, zone 658: "no frustum fits").
+          {
+            auto same_point = [&](std::size_t a, std::size_t b) {
+              if (all_tags[a][2] < 0 || all_tags[b][2] < 0) return false;
+              PlaneTags x = all_tags[a], y = all_tags[b];
+              std::sort(x.begin(), x.end());
+              std::sort(y.begin(), y.end());
+              return x == y;
+            };
+            std::vector<std::size_t> keep;
+            for (std::size_t j = 0; j < kept.size(); ++j)
+              if (keep.empty() || !same_point(keep.back(), j)) keep.push_back(j);
+            while (keep.size() > 1 && same_point(keep.back(), keep.front())) keep.pop_back();
+            if (keep.size() < kept.size()) {
+              std::vector<Vec3> k3;
+              std::vector<char> ki;
+              std::vector<PlaneTags> kt;
+              for (std::size_t j : keep) {
+                k3.push_back(kept[j]);
+                ki.push_back(kept_input[j]);
+                kt.push_back(all_tags[j]);
+              }
+              kept = std::move(k3);
+              kept_input = std::move(ki);
+              all_tags = std::move(kt);
+            }
+            if (kept.size() < 3) return false;
           }
           // A clip point between two points on the same edge line adds nothing but a straight
           // angle (three exactly collinear points after snapping): dropped.

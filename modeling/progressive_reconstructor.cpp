@@ -16,6 +16,7 @@
 #include "modeling/cylinder_builder.h"
 #include "modeling/face_intersections.h"
 #include "modeling/frustum_builder.h"
+#include "modeling/frustum_connectors.h"
 #include "modeling/polyhedral_partition.h"
 #include "modeling/mesh_topology.h"
 #include "modeling/gap_fill.h"
@@ -323,6 +324,14 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       // reversed (fixed orders: deterministic).
       const auto& fz = (*frusta)[z].solids;
       auto u = union_snapped_solids(fz, part->planes);
+      // Frusta meeting on a zone edge may bound an empty wedge there (frustum_connectors.h):
+      // fill it, then try the other orders.
+      if (!u && fz.size() > 1) {
+        int connectors = 0;
+        const std::vector<SnappedSolid> with = with_frustum_connectors(fz, &connectors);
+        if (connectors > 0)
+          if (auto c = union_snapped_solids(with, part->planes)) u = std::move(c);
+      }
       for (std::size_t rot = 1; !u && rot < fz.size() + 1 && fz.size() > 1; ++rot) {
         std::vector<SnappedSolid> order(fz);
         if (rot < fz.size())

@@ -19,6 +19,7 @@ struct EZone {
   std::vector<EPlane> half_spaces;  // the zone is on the negative side (or on) of each
   std::vector<std::vector<EPoint>> faces;
   std::vector<int> face_plane;
+  std::vector<Vec3> face_outward;
 };
 
 Vec3 to_vec(const EPoint& p) { return Vec3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())); }
@@ -31,9 +32,12 @@ EZone box_zone(const Box3& b) {
                        {b.max.x(), b.max.y(), b.max.z()}, {b.min.x(), b.max.y(), b.max.z()}};
   // Counter-clockwise seen from outside.
   const int f[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 4, 7, 3}, {1, 2, 6, 5}};
-  for (const auto& q : f) {
+  const Vec3 out[6] = {-Vec3::UnitZ(), Vec3::UnitZ(), -Vec3::UnitY(), Vec3::UnitY(), -Vec3::UnitX(), Vec3::UnitX()};
+  for (int k = 0; k < 6; ++k) {
+    const auto& q = f[k];
     z.faces.push_back({c[q[0]], c[q[1]], c[q[2]], c[q[3]]});
     z.face_plane.push_back(-1);
+    z.face_outward.push_back(out[k]);
   }
   z.half_spaces = {EPlane(-1, 0, 0, b.min.x()), EPlane(1, 0, 0, -b.max.x()), EPlane(0, -1, 0, b.min.y()),
                    EPlane(0, 1, 0, -b.max.y()), EPlane(0, 0, -1, b.min.z()), EPlane(0, 0, 1, -b.max.z())};
@@ -100,10 +104,12 @@ bool split(const EZone& z, const EPlane& plane, int plane_id, const Vec3& normal
     if (fn.size() >= 3) {
       neg.faces.push_back(std::move(fn));
       neg.face_plane.push_back(z.face_plane[fi]);
+      neg.face_outward.push_back(z.face_outward[fi]);
     }
     if (fp.size() >= 3) {
       pos.faces.push_back(std::move(fp));
       pos.face_plane.push_back(z.face_plane[fi]);
+      pos.face_outward.push_back(z.face_outward[fi]);
     }
   }
   std::vector<EPoint> cap_neg = order_cap(cap, normal);
@@ -111,8 +117,10 @@ bool split(const EZone& z, const EPlane& plane, int plane_id, const Vec3& normal
   std::vector<EPoint> cap_pos(cap_neg.rbegin(), cap_neg.rend());
   neg.faces.push_back(std::move(cap_neg));
   neg.face_plane.push_back(plane_id);
+  neg.face_outward.push_back(normal);
   pos.faces.push_back(std::move(cap_pos));
   pos.face_plane.push_back(plane_id);
+  pos.face_outward.push_back(-normal);
   neg.half_spaces = z.half_spaces;
   neg.half_spaces.push_back(plane);
   pos.half_spaces = z.half_spaces;
@@ -154,6 +162,7 @@ std::vector<ConvexZone> partition_box_by_planes(const Box3& box, const std::vect
       c.faces.push_back(std::move(poly));
     }
     c.face_plane = z.face_plane;
+    c.face_outward = z.face_outward;
     out.push_back(std::move(c));
   }
   return out;

@@ -18,6 +18,9 @@ struct ConvexZone {
   std::vector<HalfSpace> half_spaces;      // normal . p <= offset for every point of the zone
   std::vector<std::vector<Vec3>> faces;    // boundary polygons, counter-clockwise seen from outside
   std::vector<int> face_plane;             // per face: index into the planes, or -1 (box face)
+  // Per face: its outward unit normal, exact in sign (the split's side, not the polygon's
+  // rounded vertices, which can all coincide on a face a few ulps wide).
+  std::vector<Vec3> face_outward;
 };
 
 // Splits `box` by each plane in order; planes missing the current zones leave them whole. Zones

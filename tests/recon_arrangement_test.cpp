@@ -28,6 +28,13 @@ void expect_consistent(const std::vector<ConvexZone>& zones, const Box3& box) {
       for (const auto& p : f)
         for (const auto& h : z.half_spaces) EXPECT_LE(h.normal.dot(p) - h.offset, 1e-12);
     ASSERT_EQ(z.faces.size(), z.face_plane.size());
+    ASSERT_EQ(z.faces.size(), z.face_outward.size());
+    // The outward normal is a unit vector with every vertex of the zone behind it.
+    for (std::size_t f = 0; f < z.faces.size(); ++f) {
+      EXPECT_NEAR(z.face_outward[f].norm(), 1.0, 1e-12);
+      for (const auto& g : z.faces)
+        for (const auto& p : g) EXPECT_LE(z.face_outward[f].dot(p - z.faces[f][0]), 1e-12);
+    }
   }
   const Vec3 s = box.size();
   EXPECT_NEAR(total, s.x() * s.y() * s.z(), 1e-12 * s.x() * s.y() * s.z());
@@ -65,6 +72,35 @@ TEST(ReconArrangement, ObliquePlanesSplitTheBoxIntoConvexZones) {
       for (int f : z.face_plane) found = found || f == p;
     EXPECT_TRUE(found) << p;
   }
+}
+
+// Four planes meeting almost in one point away from the origin cut a zone a few ulps wide:
+// its rounded vertices nearly coincide, so a normal computed from them (Newell) has a random
+// sign. The side of each face comes from the split instead (the Horsers CSL set failed on
+// such a zone: "no depth behind face 1").
+TEST(ReconArrangement, TinyZoneFacesKnowTheirSide) {
+  const Box3 box = cube(1.0);
+  const Vec3 n = Vec3(1, 1, 1).normalized();
+  const Vec3 c = Vec3::Constant(0.3);
+  const std::vector<Plane> planes{Plane{Vec3::UnitX(), 0.3}, Plane{Vec3::UnitY(), 0.3}, Plane{Vec3::UnitZ(), 0.3},
+                                  Plane{n, n.dot(c) + 1e-15}};
+  const auto zones = partition_box_by_planes(box, planes);
+  int tiny = 0;
+  for (const auto& z : zones) {
+    bool near = true;
+    for (const auto& f : z.faces)
+      for (const auto& p : f) near = near && (p - c).norm() < 1e-12;
+    if (!near) continue;
+    ++tiny;
+    ASSERT_EQ(z.faces.size(), 4u);
+    for (std::size_t f = 0; f < 4; ++f) {
+      const int pl = z.face_plane[f];
+      ASSERT_GE(pl, 0);
+      const Vec3 expect = pl == 3 ? n : Vec3(-planes[static_cast<std::size_t>(pl)].normal);
+      EXPECT_NEAR((z.face_outward[f] - expect).norm(), 0.0, 1e-15) << "face on plane " << pl;
+    }
+  }
+  EXPECT_EQ(tiny, 1);
 }
 
 TEST(ReconArrangement, PlaneMissingTheBoxChangesNothing) {
