@@ -45,7 +45,8 @@ std::vector<std::vector<int>> neighbours(const TriMesh& m) {
 
 }  // namespace
 
-std::vector<SnappedSolid> with_frustum_connectors(const std::vector<SnappedSolid>& frusta, int* added) {
+std::vector<SnappedSolid> with_frustum_connectors(const std::vector<SnappedSolid>& frusta, const std::vector<Plane>& planes,
+                                                  int* added) {
   const std::size_t nf = frusta.size();
   std::vector<std::vector<std::vector<int>>> adj(nf);
   std::vector<int> half(nf, 0);
@@ -74,6 +75,11 @@ std::vector<SnappedSolid> with_frustum_connectors(const std::vector<SnappedSolid
   for (const auto& [ab, pairs] : shared) {
     const SnappedSolid& A = frusta[uz(ab.first)];
     const SnappedSolid& B = frusta[uz(ab.second)];
+    // Only a pair whose own union is refused gets connectors: each connector is one more
+    // operand with exactly coplanar contacts, the configuration CGAL 5.5's corefinement is
+    // least robust on (a connector added to a pair that did not need one crashed it).
+    if (union_snapped_solids({A, B}, planes)) continue;
+    std::vector<SnappedSolid> pair_connectors;
     const auto& adj_a = adj[uz(ab.first)];
     const auto& adj_b = adj[uz(ab.second)];
     std::set<int> seen;
@@ -126,9 +132,16 @@ std::vector<SnappedSolid> with_frustum_connectors(const std::vector<SnappedSolid
       const Box3 box = bounding_box(c.mesh.vertices);
       const double d = box.diagonal();
       if (!(signed_volume(c.mesh) > 1e-9 * d * d * d)) continue;
-      after[uz(ab.first)].push_back(std::move(c));
-      ++count;
+      pair_connectors.push_back(std::move(c));
     }
+    // Kept only when they make the pair's union valid.
+    if (pair_connectors.empty()) continue;
+    std::vector<SnappedSolid> check{A};
+    check.insert(check.end(), pair_connectors.begin(), pair_connectors.end());
+    check.push_back(B);
+    if (!union_snapped_solids(check, planes)) continue;
+    count += static_cast<int>(pair_connectors.size());
+    for (auto& c : pair_connectors) after[uz(ab.first)].push_back(std::move(c));
   }
   if (added) *added = count;
   std::vector<SnappedSolid> out;

@@ -32,7 +32,10 @@ namespace ps {
 // the second frustum of its pair, which is what keeps the intermediate unions manifold.
 // Shared points are bottom vertices with identical coordinates; bottoms are the first half of
 // each frustum's vertices (frustum_builder's layout). Runs whose hull is flat are skipped.
-// `added` (optional) receives the number of connectors.
-std::vector<SnappedSolid> with_frustum_connectors(const std::vector<SnappedSolid>& frusta, int* added = nullptr);
+// Only pairs whose own union (union_snapped_solids on `planes`) is refused get connectors, and
+// only when the pair's union with them is valid. `added` (optional) receives the number of
+// connectors.
+std::vector<SnappedSolid> with_frustum_connectors(const std::vector<SnappedSolid>& frusta, const std::vector<Plane>& planes,
+                                                  int* added = nullptr);
 
 }  // namespace ps

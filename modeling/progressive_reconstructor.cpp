@@ -275,7 +275,10 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
   // Frusta, then the unions of each zone. A refused union (a non-manifold contact between
   // frusta) is retried with the frusta rebuilt under other margins and heights: the contacts
   // are coincidences of the construction, not of the input (same idea as the perturbation of
-  // 4.3). Every attempt is deterministic.
+  // 4.3). Every attempt is deterministic. Only the zones whose union was refused are redone
+  // (zones meet on faces whose contents the stitch XORs, so neighbours need not come from the
+  // same attempt); a stitched surface that fails its checks sends every zone to the next
+  // attempt.
   FrustumOptions wide;
   wide.face_margin = 0.045;
   wide.height_margin = 0.12;
@@ -287,6 +290,7 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
   TriMesh mesh;
   std::string failure;
   std::size_t todo_count = 0;
+  std::vector<char> redo;  // per zone: its union must be (re)computed in this attempt
   for (std::size_t attempt = 0; attempt < 3; ++attempt) {
     t = Clock::now();
     FrustumReport fr;
@@ -297,10 +301,15 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
     progress("primitives", 1.0);
 
     t = Clock::now();
+    if (attempt == 0) {
+      redo.assign(frusta->size(), 1);
+      solids.assign(frusta->size(), TriMesh{});
+      todo_count = 0;
+      for (const auto& f : *frusta) todo_count += f.solids.empty() ? 0u : 1u;
+    }
     std::vector<int> todo;
     for (std::size_t z = 0; z < frusta->size(); ++z)
-      if (!(*frusta)[z].solids.empty()) todo.push_back(static_cast<int>(z));
-    solids.assign(frusta->size(), TriMesh{});
+      if (!(*frusta)[z].solids.empty() && redo[z]) todo.push_back(static_cast<int>(z));
     std::vector<std::string> errors(todo.size());
     // Progress per zone for long runs (the callback is called under a lock, from the worker
     // threads).
@@ -328,7 +337,7 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       // fill it, then try the other orders.
       if (!u && fz.size() > 1) {
         int connectors = 0;
-        const std::vector<SnappedSolid> with = with_frustum_connectors(fz, &connectors);
+        const std::vector<SnappedSolid> with = with_frustum_connectors(fz, part->planes, &connectors);
         if (connectors > 0)
           if (auto c = union_snapped_solids(with, part->planes)) u = std::move(c);
       }
@@ -343,6 +352,7 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       if (u) {
         solids[z] = std::move(*u);
         canonicalize(solids[z]);
+        redo[z] = 0;
       } else {
         errors[i] = "zone " + std::to_string(z) + ": " + u.message();
       }
@@ -351,7 +361,6 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
     failure.clear();
     for (const auto& e : errors)
       if (!e.empty() && failure.empty()) failure = e;
-    todo_count = todo.size();
     if (failure.empty()) {
       // Stitch, and check what the rounding of exact unions may have broken: a closed
       // manifold (checked again by the caller) without self-intersections (two nearly
@@ -375,6 +384,9 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
         rep.warnings.push_back("frusta rebuilt with other margins (attempt " + std::to_string(attempt + 1) + ")");
       break;
     }
+    rep.warnings.push_back("attempt " + std::to_string(attempt + 1) + " failed: " + failure);
+    if (std::none_of(redo.begin(), redo.end(), [](char c) { return c != 0; }))
+      std::fill(redo.begin(), redo.end(), 1);  // every union held: the stitched surface failed
   }
   if (!failure.empty()) return Result<TriMesh>::error("reconstruction failed: " + failure);
   rep.zones_recomputed = static_cast<int>(todo_count);
