@@ -52,6 +52,12 @@ Vec2 polygon_centroid(const std::vector<Vec2>& p) {
   return c;
 }
 
+Vec3 vertex_mean(const std::vector<Vec3>& poly) {
+  Vec3 m = Vec3::Zero();
+  for (const auto& p : poly) m += p;
+  return m / static_cast<double>(poly.size());
+}
+
 double polygon_diameter(const std::vector<Vec3>& poly) {
   double d = 0;
   for (std::size_t i = 0; i < poly.size(); ++i)
@@ -376,12 +382,7 @@ class Builder {
       // kept plane (three kept faces meeting at a zone vertex, two sharing only a vertex).
       std::vector<Vec3> candidates;
       if (kept.empty()) candidates.push_back(z.centroid);
-      if (kept.size() == 1) {
-        const auto& poly = z.faces[uz(kept[0])].polygon;
-        Vec3 m = Vec3::Zero();
-        for (const auto& p : poly) m += p;
-        candidates.push_back(m / static_cast<double>(poly.size()));
-      }
+      if (kept.size() == 1) candidates.push_back(vertex_mean(z.faces[uz(kept[0])].polygon));
       if (kept.size() == 2) {
         const PolyFace& g = z.faces[uz(kept[0])];
         const int other = z.faces[uz(kept[1])].plane;
@@ -430,10 +431,7 @@ class Builder {
       std::vector<Vec3> target(b.pts.size(), z.centroid);
       for (std::size_t i = 0; i < b.pts.size(); ++i) {
         if (stay_face[i].size() == 1) {
-          const auto& poly = z.faces[uz(stay_face[i][0])].polygon;
-          Vec3 m = Vec3::Zero();
-          for (const auto& p : poly) m += p;
-          target[i] = m / static_cast<double>(poly.size());
+          target[i] = vertex_mean(z.faces[uz(stay_face[i][0])].polygon);
         } else if (stay_face[i].size() == 2) {
           const auto& poly = z.faces[uz(stay_face[i][0])].polygon;
           const Plane& other = part_.planes[uz(z.faces[uz(stay_face[i][1])].plane)];

@@ -128,10 +128,11 @@ std::vector<SnappedSolid> with_frustum_connectors(const std::vector<SnappedSolid
         if (k != 3) continue;
         c.mesh.faces.push_back(t);
       }
-      // A sliver hull would degenerate when its points are snapped.
+      // A sliver hull would degenerate when its points are snapped. The volume is taken about
+      // one of its vertices: the hull is zone-sized, far from the origin.
       const Box3 box = bounding_box(c.mesh.vertices);
       const double d = box.diagonal();
-      if (!(signed_volume(c.mesh) > 1e-9 * d * d * d)) continue;
+      if (!(signed_volume(c.mesh, c.mesh.vertices.front()) > 1e-9 * d * d * d)) continue;
       pair_connectors.push_back(std::move(c));
     }
     // Kept only when they make the pair's union valid.
