@@ -1,4 +1,5 @@
 // planesketch reconstruct IN -o OUT.(obj|off|ply|stl) [--report R.json] [--no-improve] [--edits E.json]
+//                       [--repair]
 // Reads cross sections (contour JSON, CSL or .contour), reconstructs a closed surface and writes
 // it with a JSON report (docs: ../shared/docs/contours.md, docs/reconstruction.md).
 #include <tbb/global_control.h>
@@ -13,6 +14,7 @@
 
 #include "app/commands.h"
 #include "modeling/contour_io.h"
+#include "modeling/curve_repair.h"
 #include "modeling/mesh_io.h"
 #include "modeling/mesh_queries.h"
 #include "modeling/progressive_reconstructor.h"
@@ -23,6 +25,7 @@ namespace {
 struct Options {
   std::string input, output, report, edits;
   bool no_improve = false;
+  bool repair = false;
   int threads = 0;
   bool quiet = false;
 };
@@ -51,6 +54,7 @@ int run(const Options& o) {
   std::vector<std::string> warnings;
   auto sections = ps::read_sections(o.input, &warnings);
   if (!sections) throw ps::app::CommandFailed(sections.message());
+  if (o.repair) ps::repair_section_curves(*sections, &warnings);
   for (const auto& w : warnings) std::cerr << "planesketch: warning: " << w << "\n";
 
   ps::ReconstructOptions ro;
@@ -139,6 +143,8 @@ void setup(CLI::App& root) {
   cmd->add_option("--edits", opts->edits,
                   "Topology edits to apply (JSON: {\"edits\": [{\"kind\": \"join\"|\"split\", \"stroke\": [[x,y,z],...]}]})");
   cmd->add_flag("--no-improve", opts->no_improve, "Skip refinement and smoothing");
+  cmd->add_flag("--repair", opts->repair,
+                "Split curves that touch or cross themselves into simple curves (traced contours; docs/formats.md)");
   cmd->add_option("--threads", opts->threads, "Worker threads (0: all)");
   cmd->add_flag("-q,--quiet", opts->quiet, "No progress lines");
   cmd->callback([opts] { run(*opts); });

@@ -38,6 +38,12 @@ def crossing(g):
     # a second curve on the z plane crossing the first one
     g["curves"].append({"plane": 2, "points": [[p[1] * 0.5, p[0] * 1.4, p[2]] for p in ellipse(2, offs[2])]})
 variant("crossing", crossing)
+def spike(g):
+    # curve 2 runs out to a tip and back to the same point: it touches itself (rule 3)
+    p = g["curves"][2]["points"]
+    tip = [p[5][0] * 1.1, p[5][1] * 1.1, p[5][2]]
+    p[6:6] = [tip, list(p[5])]
+variant("spike", spike)
 g = json.loads(json.dumps(good)); nan(g)
 open(os.path.join(d, "nan.json"), "w").write(json.dumps(g))
 open(os.path.join(d, "empty.json"), "w").write("")
@@ -78,5 +84,12 @@ grep -qE "curve 1.*repeated" "$tmp/err" || { echo "FAIL: no warning for the repe
 expect_fail offplane.json 'curve(s\[| )1'
 expect_fail crossing.json "cross"
 expect_fail missing.json "missing.json"
+# A curve touching itself is refused as it is and repaired on request (docs/formats.md).
+expect_fail spike.json "curve 2 crosses itself"
+"$bin" reconstruct "$tmp/spike.json" -o "$tmp/spike.obj" -q --no-improve --repair --report "$tmp/spike-report.json" 2> "$tmp/err"
+grep -qE "curve 2 touched or crossed itself: repaired into 1 simple curve" "$tmp/err" || { echo "FAIL: no repair warning:"; cat "$tmp/err"; exit 1; }
+python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['closed'] and r['manifold'] and r['components'] == 1, r" "$tmp/spike-report.json"
+"$bin" convert --repair "$tmp/spike.json" "$tmp/spike-repaired.json" 2> "$tmp/err"
+"$bin" reconstruct "$tmp/spike-repaired.json" -o "$tmp/spike2.obj" -q --no-improve > /dev/null
 if "$bin" reconstruct "$tmp/good.json" -o "$tmp/out.xyz" 2> "$tmp/err"; then echo "FAIL: bad extension accepted"; exit 1; fi
 echo "reconstruct cli ok"

@@ -1,0 +1,60 @@
+#pragma once
+// Repair of section curves that touch or cross themselves (opt-in: `planesketch reconstruct
+// --repair`, `planesketch convert --repair`).
+//
+// Contours traced from scans and medical images often pinch: a curve comes back to a vertex it
+// already passed (a hole or a bay joined to the boundary at one point), folds back on itself
+// (a spike of zero width), or twists through a tiny loop. Stroke rule 3 refuses such curves
+// (section_validate.h), and a sketch should still be refused: the designer redraws. A file of
+// a thousand traced contours cannot be redrawn, so this repair turns each such curve into
+// simple curves with the same region.
+//
+// The region of a curve is the set of points around which it winds a non-zero number of times
+// (both lobes of a figure eight, a loop twisted back, the part of a curve wound twice).
+// The repair:
+//   1. splits the curve at every place where it touches or crosses itself into loops, each of
+//      them simple (a spike, a loop with no area, is dropped);
+//   2. keeps a loop only where it bounds the region: the region is on one side of it and not on
+//      the other (a loop wound twice in the same direction is dropped);
+//   3. drops loops whose area is below `min_area_fraction` of the curve's largest loop;
+//   4. separates loops that still touch: the contact vertex of the smaller loop moves into that
+//      loop by `separation` of its shorter adjacent edge, at most `max_separation` of the
+//      curve's bounding-box diagonal. The loops then nest (rule 2: a pinched hole becomes a
+//      hole, a second lobe a second curve).
+// The result is checked exactly (polyline_crossing.h): simple loops, no two touching. A curve
+// whose loops cross each other after the split (it crosses itself twice between the same
+// parts) is not repaired and keeps its error.
+//
+// Sign conventions: loops are returned in the orientation they had in the curve; nesting, not
+// orientation, decides holes downstream (section_validate.h).
+#include <string>
+#include <vector>
+
+#include "modeling/cross_section.h"
+#include "modeling/mesh.h"
+#include "modeling/status.h"
+
+namespace ps {
+
+struct CurveRepairOptions {
+  double min_area_fraction = 1e-4;  // loops below this fraction of the largest loop are dropped
+  double separation = 0.1;          // of the shorter edge next to a contact vertex
+  double max_separation = 1e-4;     // of the curve's bounding-box diagonal
+};
+
+// One 2D closed curve (each point once, the last joined to the first). Returns the simple loops
+// (largest area first), or an error naming what could not be repaired. A simple curve comes
+// back unchanged as one loop.
+Result<std::vector<std::vector<Vec2>>> repair_closed_curve(const std::vector<Vec2>& curve,
+                                                           const CurveRepairOptions& options = {});
+
+// Every curve of `sections` that touches or crosses itself is replaced by its repaired loops:
+// the largest keeps the curve's index, the others are appended (on the same plane). Points of
+// the input are kept bit for bit; only contact points (new) and moved contact vertices change.
+// A warning per repaired curve names it and what was done. Curves that cannot be repaired are
+// left as they are (validation then refuses them with its own message) and named in a warning.
+// Returns the number of curves repaired.
+int repair_section_curves(SectionSet& sections, std::vector<std::string>* warnings = nullptr,
+                          const CurveRepairOptions& options = {});
+
+}  // namespace ps
