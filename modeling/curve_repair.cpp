@@ -10,7 +10,9 @@
 #include <cmath>
 #include <optional>
 #include <sstream>
+#include <unordered_map>
 
+#include "modeling/polygon_boolean_2.h"
 #include "modeling/polyline_crossing.h"
 #include "modeling/section_validate.h"
 
@@ -208,6 +210,65 @@ double move_inward(Loop& l, std::size_t v, const CurveRepairOptions& o, double d
   return dist;
 }
 
+// Sorts `loops` by decreasing |area|, then pulls apart every two that touch (the smaller one's
+// contact vertex moves into it) and checks the result exactly: every loop simple, no two
+// touching. An error names what is left.
+Status separate_loops(std::vector<Loop>& loops, const CurveRepairOptions& o, double diagonal, int* separated,
+                      double* largest_move) {
+  std::stable_sort(loops.begin(), loops.end(), [](const Loop& a, const Loop& b) {
+    return std::abs(signed_area(a)) > std::abs(signed_area(b));
+  });
+  std::size_t total = 0;
+  for (const Loop& l : loops) total += l.size();
+  for (std::size_t guard = 0;; ++guard) {
+    if (guard > 4 * total + 16) return Status::error("its loops keep touching after separation");
+    bool any = false;
+    for (std::size_t i = 0; i < loops.size() && !any; ++i) {
+      for (std::size_t j = i + 1; j < loops.size() && !any; ++j) {
+        const auto pc = find_pair_contact(loops[i], loops[j]);
+        if (!pc) continue;
+        any = true;
+        Loop& big = loops[i];
+        Loop& small = loops[j];  // sorted: j is not larger
+        const std::size_t nb = big.size(), ns = small.size();
+        const Vec2 bp = big[pc->ea].p, bq = big[(pc->ea + 1) % nb].p;
+        const Vec2 sp = small[pc->eb].p, sq = small[(pc->eb + 1) % ns].p;
+        if (pc->proper) {
+          std::ostringstream m;
+          const Vec2 x = line_intersection(bp, bq, sp, sq);
+          m << "crosses itself twice between the same parts near (" << x.x() << ", " << x.y() << ")";
+          return Status::error(m.str());
+        }
+        std::size_t v;
+        if (on_segment(bp, bq, sp)) {
+          v = pc->eb;
+        } else if (on_segment(bp, bq, sq)) {
+          v = (pc->eb + 1) % ns;
+        } else {
+          // A vertex of the larger loop on the smaller loop's edge: make it a vertex there.
+          const V& at = on_segment(sp, sq, bp) ? big[pc->ea] : big[(pc->ea + 1) % nb];
+          small.insert(small.begin() + static_cast<std::ptrdiff_t>(pc->eb + 1), at);
+          v = pc->eb + 1;
+        }
+        *largest_move = std::max(*largest_move, move_inward(small, v, o, diagonal));
+        ++*separated;
+      }
+    }
+    if (!any) break;
+  }
+  std::vector<std::vector<Vec2>> flat;
+  for (const Loop& l : loops) {
+    flat.emplace_back();
+    for (const V& v : l) flat.back().push_back(v.p);
+    if (flat.back().size() < 3 || first_self_crossing(flat.back()))
+      return Status::error("a loop still crosses itself after the repair");
+  }
+  for (std::size_t i = 0; i < flat.size(); ++i)
+    for (std::size_t j = i + 1; j < flat.size(); ++j)
+      if (first_crossing_between(flat[i], flat[j])) return Status::error("two of its loops still touch after the repair");
+  return Status::ok();
+}
+
 struct Repaired {
   std::vector<Loop> loops;  // largest |area| first
   int dropped_tiny = 0, dropped_redundant = 0, separated = 0;
@@ -270,62 +331,10 @@ Result<Repaired> repair(const Loop& input, const CurveRepairOptions& o) {
     }
   }
   if (r.loops.empty()) return Result<Repaired>::error("no loop of it bounds its region");
-  std::stable_sort(r.loops.begin(), r.loops.end(), [](const Loop& a, const Loop& b) {
-    return std::abs(signed_area(a)) > std::abs(signed_area(b));
-  });
 
   // 4. Separate touching loops: the smaller one's contact vertex moves into it.
-  std::size_t total = 0;
-  for (const Loop& l : r.loops) total += l.size();
-  for (std::size_t guard = 0;; ++guard) {
-    if (guard > 4 * total + 16) return Result<Repaired>::error("its loops keep touching after separation");
-    bool any = false;
-    for (std::size_t i = 0; i < r.loops.size() && !any; ++i) {
-      for (std::size_t j = i + 1; j < r.loops.size() && !any; ++j) {
-        const auto pc = find_pair_contact(r.loops[i], r.loops[j]);
-        if (!pc) continue;
-        any = true;
-        Loop& big = r.loops[i];
-        Loop& small = r.loops[j];  // sorted: j is not larger
-        const std::size_t nb = big.size(), ns = small.size();
-        const Vec2 bp = big[pc->ea].p, bq = big[(pc->ea + 1) % nb].p;
-        const Vec2 sp = small[pc->eb].p, sq = small[(pc->eb + 1) % ns].p;
-        if (pc->proper) {
-          std::ostringstream m;
-          const Vec2 x = line_intersection(bp, bq, sp, sq);
-          m << "crosses itself twice between the same parts near (" << x.x() << ", " << x.y() << ")";
-          return Result<Repaired>::error(m.str());
-        }
-        std::size_t v;
-        if (on_segment(bp, bq, sp)) {
-          v = pc->eb;
-        } else if (on_segment(bp, bq, sq)) {
-          v = (pc->eb + 1) % ns;
-        } else {
-          // A vertex of the larger loop on the smaller loop's edge: make it a vertex there.
-          const V& at = on_segment(sp, sq, bp) ? big[pc->ea] : big[(pc->ea + 1) % nb];
-          small.insert(small.begin() + static_cast<std::ptrdiff_t>(pc->eb + 1), at);
-          v = pc->eb + 1;
-        }
-        r.largest_move = std::max(r.largest_move, move_inward(small, v, o, diagonal));
-        ++r.separated;
-      }
-    }
-    if (!any) break;
-  }
-
-  // The result, checked exactly: every loop simple, no two touching.
-  std::vector<std::vector<Vec2>> flat;
-  for (const Loop& l : r.loops) {
-    flat.emplace_back();
-    for (const V& v : l) flat.back().push_back(v.p);
-    if (flat.back().size() < 3 || first_self_crossing(flat.back()))
-      return Result<Repaired>::error("a loop still crosses itself after the repair");
-  }
-  for (std::size_t i = 0; i < flat.size(); ++i)
-    for (std::size_t j = i + 1; j < flat.size(); ++j)
-      if (first_crossing_between(flat[i], flat[j]))
-        return Result<Repaired>::error("two of its loops still touch after the repair");
+  if (const Status st = separate_loops(r.loops, o, diagonal, &r.separated, &r.largest_move); !st)
+    return Result<Repaired>::error(st.message());
   return r;
 }
 
@@ -335,6 +344,163 @@ std::string fmt(double v) {
   s << v;
   return s.str();
 }
+
+// === 5. Curves of one plane that cross or touch each other
+// Whether most vertices of `a` lie inside the simple loop `b` (vertices on b count for neither).
+bool mostly_inside(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  int in = 0, out = 0;
+  for (const Vec2& q : a) {
+    bool on = false;
+    for (std::size_t i = 0; i < b.size() && !on; ++i) on = on_segment(b[i], b[(i + 1) % b.size()], q);
+    if (on) continue;
+    (winding_number(b, q) != 0 ? in : out)++;
+  }
+  return in > out;
+}
+
+int find_root(std::vector<int>& parent, int i) {
+  while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+  return i;
+}
+
+// Replaces each group of curves of a plane that cross or touch one another by the boundary of
+// the region they make together: curves at even depth (counted among the plane's curves, by
+// most of their vertices) add their inside, curves at odd depth take it away, in order of
+// depth. Returns the number of groups replaced.
+int merge_crossing_curves(SectionSet& sections, std::vector<std::string>* warnings, const CurveRepairOptions& o) {
+  int merged = 0;
+  std::vector<char> erase(sections.curves.size(), 0);
+  for (std::size_t pl = 0; pl < sections.planes.size(); ++pl) {
+    std::vector<int> idx;
+    for (std::size_t c = 0; c < sections.curves.size(); ++c) {
+      const CrossSection& cs = sections.curves[c];
+      bool finite = cs.points.size() >= 3;
+      for (const Vec3& p : cs.points) finite = finite && p.allFinite();
+      if (cs.plane == static_cast<int>(pl) && finite) idx.push_back(static_cast<int>(c));
+    }
+    if (idx.size() < 2) continue;
+    const PlaneFrame frame = plane_frame(sections.planes[pl]);
+    const std::size_t n = idx.size();
+    std::vector<std::vector<Vec2>> flat(n);
+    std::vector<Box> box(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (const Vec3& p : sections.curves[static_cast<std::size_t>(idx[i])].points) flat[i].push_back(frame.to_2d(p));
+      box[i] = {1e300, -1e300, 1e300, -1e300};
+      for (const Vec2& q : flat[i])
+        box[i] = {std::min(box[i].x0, q.x()), std::max(box[i].x1, q.x()), std::min(box[i].y0, q.y()), std::max(box[i].y1, q.y())};
+    }
+    std::vector<int> parent(n);
+    for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<int>(i);
+    bool any = false;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j)
+        if (box[i].overlaps(box[j]) && first_crossing_between(flat[i], flat[j])) {
+          parent[static_cast<std::size_t>(find_root(parent, static_cast<int>(i)))] = find_root(parent, static_cast<int>(j));
+          any = true;
+        }
+    if (!any) continue;
+    std::vector<std::vector<int>> groups(n);
+    for (std::size_t i = 0; i < n; ++i) groups[static_cast<std::size_t>(find_root(parent, static_cast<int>(i)))].push_back(static_cast<int>(i));
+    for (const auto& group : groups) {
+      if (group.size() < 2) continue;
+      // Depth among all curves of the plane.
+      std::vector<std::pair<int, int>> by_depth;  // (depth, position in idx)
+      for (int gi : group) {
+        int depth = 0;
+        for (std::size_t k = 0; k < n; ++k)
+          if (static_cast<int>(k) != gi && box[k].overlaps(box[static_cast<std::size_t>(gi)]) &&
+              mostly_inside(flat[static_cast<std::size_t>(gi)], flat[k]))
+            ++depth;
+        by_depth.emplace_back(depth, gi);
+      }
+      std::stable_sort(by_depth.begin(), by_depth.end());
+      const int d0 = by_depth.front().first;
+      std::vector<std::vector<Vec2>> loops;
+      std::vector<bool> add;
+      std::unordered_map<std::string, Vec3> original;  // a 2D point's bits -> its input 3D point
+      auto key = [](const Vec2& q) { return std::string(reinterpret_cast<const char*>(q.data()), sizeof(double) * 2); };
+      for (const auto& [depth, gi] : by_depth) {
+        loops.push_back(flat[static_cast<std::size_t>(gi)]);
+        add.push_back((depth - d0) % 2 == 0);
+        const auto& pts = sections.curves[static_cast<std::size_t>(idx[static_cast<std::size_t>(gi)])].points;
+        for (std::size_t k = 0; k < pts.size(); ++k) original.emplace(key(flat[static_cast<std::size_t>(gi)][k]), pts[k]);
+      }
+      // The region's boundary loops; one that touches itself (CGAL keeps a pinch inside one
+      // loop) is split as a curve of its own would be.
+      std::vector<Loop> out;
+      Status split_status = Status::ok();
+      for (const auto& piece : boolean_of_loops(loops, add))
+        for (const auto& loop : piece) {
+          Loop l;
+          std::vector<Vec2> pts;
+          for (const Vec2& q : loop) l.push_back(V{q, 0}), pts.push_back(q);
+          drop_repeated(l);
+          if (!first_self_crossing(pts)) {
+            out.push_back(std::move(l));
+            continue;
+          }
+          auto r = repair(l, o);
+          if (!r) {
+            split_status = Status::error("its boundary " + r.message());
+            continue;
+          }
+          for (Loop& part : r->loops) out.push_back(std::move(part));
+        }
+      Vec2 lo(box[static_cast<std::size_t>(group[0])].x0, box[static_cast<std::size_t>(group[0])].y0), hi = lo;
+      for (int gi : group) {
+        const Box& b = box[static_cast<std::size_t>(gi)];
+        lo = lo.cwiseMin(Vec2(b.x0, b.y0)), hi = hi.cwiseMax(Vec2(b.x1, b.y1));
+      }
+      int separated = 0;
+      double moved = 0.0;
+      std::vector<int> names;
+      for (int gi : group) names.push_back(idx[static_cast<std::size_t>(gi)]);
+      std::sort(names.begin(), names.end());
+      std::ostringstream list;
+      for (std::size_t k = 0; k < names.size(); ++k) list << (k ? (k + 1 == names.size() ? " and " : ", ") : "") << names[k];
+      const Status st = split_status ? separate_loops(out, o, (hi - lo).norm(), &separated, &moved) : split_status;
+      if (!st || out.empty()) {
+        if (warnings)
+          warnings->push_back("curves " + list.str() + " on plane " + std::to_string(pl) +
+                              " cross each other and were not merged: " + (st ? "nothing is left of them" : st.message()));
+        continue;
+      }
+      std::vector<CrossSection> curves;
+      for (const Loop& l : out) {
+        CrossSection c;
+        c.plane = static_cast<int>(pl);
+        for (const V& v : l) {
+          const auto it = v.id >= 0 ? original.find(key(v.p)) : original.end();
+          c.points.push_back(it != original.end() ? it->second : frame.to_3d(v.p));
+        }
+        curves.push_back(std::move(c));
+      }
+      std::ostringstream m;
+      m << "curves " << list.str() << " on plane " << pl << " cross or touch each other: replaced by the "
+        << curves.size() << " curve" << (curves.size() > 1 ? "s" : "") << " bounding their region";
+      if (separated > 0) m << "; " << separated << " contact(s) separated by up to " << fmt(moved);
+      for (std::size_t k = 0; k < names.size(); ++k) {
+        if (k < curves.size()) sections.curves[static_cast<std::size_t>(names[k])] = std::move(curves[k]);
+        else erase[static_cast<std::size_t>(names[k])] = 1;
+      }
+      for (std::size_t k = names.size(); k < curves.size(); ++k) {
+        sections.curves.push_back(std::move(curves[k]));
+        erase.push_back(0);
+      }
+      if (warnings) warnings->push_back(m.str());
+      ++merged;
+    }
+  }
+  std::vector<CrossSection> kept;
+  for (std::size_t c = 0; c < sections.curves.size(); ++c)
+    if (!erase[c]) kept.push_back(std::move(sections.curves[c]));
+  if (kept.size() != sections.curves.size() && warnings)
+    warnings->push_back("curves were renumbered: " + std::to_string(sections.curves.size() - kept.size()) +
+                        " merged away");
+  sections.curves = std::move(kept);
+  return merged;
+}
+
 
 }  // namespace
 
@@ -402,7 +568,7 @@ int repair_section_curves(SectionSet& sections, std::vector<std::string>* warnin
     if (warnings) warnings->push_back(m.str());
     ++repaired;
   }
-  return repaired;
+  return repaired + merge_crossing_curves(sections, warnings, options);
 }
 
 }  // namespace ps

@@ -53,7 +53,15 @@ Result<std::vector<std::vector<Vec2>>> repair_closed_curve(const std::vector<Vec
 // the input are kept bit for bit; only contact points (new) and moved contact vertices change.
 // A warning per repaired curve names it and what was done. Curves that cannot be repaired are
 // left as they are (validation then refuses them with its own message) and named in a warning.
-// Returns the number of curves repaired.
+//
+// Then, per plane, each group of curves that cross or touch one another (two traced organs
+// overlapping, a hole crossing its boundary) is replaced by the boundary of the region they
+// make: a curve at even depth among the plane's curves (counted by most of its vertices) adds
+// its inside, one at odd depth takes it away, in order of depth (exact: polygon_boolean_2.h).
+// Touching results are separated as above. The group's lowest indices take the new curves;
+// extra curves are appended; when fewer curves result, the curves after them are renumbered
+// (a warning says so).
+// Returns the number of curves repaired plus the number of groups merged.
 int repair_section_curves(SectionSet& sections, std::vector<std::string>* warnings = nullptr,
                           const CurveRepairOptions& options = {});
 

@@ -186,5 +186,73 @@ TEST(CurveRepair, SectionSetKeepsInputPointsAndValidates) {
   EXPECT_EQ(v->depth[1], 0);
 }
 
+SectionSet plane_with(const std::vector<std::vector<Vec2>>& loops) {
+  SectionSet s;
+  Plane p;
+  p.normal = Vec3::UnitZ();
+  p.offset = 0.5;
+  s.planes.push_back(p);
+  const PlaneFrame frame = plane_frame(p);
+  for (const auto& l : loops) {
+    CrossSection c{0, {}};
+    for (const Vec2& q : l) c.points.push_back(frame.to_3d(q));
+    s.curves.push_back(c);
+  }
+  return s;
+}
+
+double total_abs_area(const SectionSet& s, const std::vector<int>& depth) {
+  // Area of the section region: outer curves add, holes (odd depth) subtract.
+  const PlaneFrame frame = plane_frame(s.planes[0]);
+  double a = 0.0;
+  for (std::size_t c = 0; c < s.curves.size(); ++c) {
+    std::vector<Vec2> l;
+    for (const Vec3& p : s.curves[c].points) l.push_back(frame.to_2d(p));
+    a += (depth[c] % 2 == 0 ? 1.0 : -1.0) * std::abs(area(l));
+  }
+  return a;
+}
+
+TEST(CurveRepair, OverlappingCurvesOfAPlaneBecomeTheirUnion) {
+  // Two squares overlapping in a 1 x 2 strip, and a third curve away from them.
+  SectionSet s = plane_with({{{0, 0}, {3, 0}, {3, 2}, {0, 2}},
+                             {{2, 0.5}, {5, 0.5}, {5, 2.5}, {2, 2.5}},
+                             {{10, 0}, {11, 0}, {11, 1}, {10, 1}}});
+  ASSERT_FALSE(validate_sections(s));
+  std::vector<std::string> warnings;
+  EXPECT_EQ(repair_section_curves(s, &warnings), 1);
+  ASSERT_EQ(warnings.size(), 2u);  // the merge, and the renumbering
+  EXPECT_NE(warnings[0].find("curves 0 and 1 on plane 0"), std::string::npos) << warnings[0];
+  ASSERT_EQ(s.curves.size(), 2u);
+  auto v = validate_sections(s);
+  ASSERT_TRUE(v) << v.message();
+  EXPECT_NEAR(total_abs_area(s, v->depth), 6.0 + 6.0 - 1.5 + 1.0, 1e-12);
+}
+
+TEST(CurveRepair, HoleCrossingItsBoundaryIsTakenAway) {
+  // A hole (inside the 10 x 10 square by most of its vertices) that pokes out through x = 10.
+  SectionSet s = plane_with({{{0, 0}, {10, 0}, {10, 10}, {0, 10}},
+                             {{4, 4}, {8, 4}, {9, 5}, {11, 5}, {11, 6}, {8, 6}, {4, 6}}});
+  ASSERT_FALSE(validate_sections(s));
+  std::vector<std::string> warnings;
+  EXPECT_EQ(repair_section_curves(s, &warnings), 1);
+  auto v = validate_sections(s);
+  ASSERT_TRUE(v) << v.message();
+  // The square minus the part of the hole inside it: a notch, one curve, no hole.
+  ASSERT_EQ(s.curves.size(), 1u);
+  EXPECT_NEAR(total_abs_area(s, v->depth), 100.0 - (8.0 + 0.5 * 1.0 * 1.0 + 1.0 + 1.0), 1e-9);
+}
+
+TEST(CurveRepair, CurvesTouchingAtACornerArePulledApart) {
+  SectionSet s = plane_with({{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{1, 1}, {2, 1}, {2, 2}, {1, 2}}});
+  ASSERT_FALSE(validate_sections(s));
+  std::vector<std::string> warnings;
+  EXPECT_EQ(repair_section_curves(s, &warnings), 1);
+  ASSERT_EQ(s.curves.size(), 2u);
+  auto v = validate_sections(s);
+  ASSERT_TRUE(v) << v.message();
+  EXPECT_NEAR(total_abs_area(s, v->depth), 2.0, 1e-3);  // the moved corner costs delta / sqrt(2)
+}
+
 }  // namespace
 }  // namespace ps
