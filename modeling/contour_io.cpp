@@ -3,7 +3,9 @@
 // hand-written parser can name the exact line of every problem. JSON goes through nlohmann_json.
 #include "modeling/contour_io.h"
 
+#include "modeling/curve_repair.h"
 #include "modeling/polygon_triangulate.h"
+#include "modeling/section_validate.h"
 
 #include <algorithm>
 #include <array>
@@ -16,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -496,6 +499,76 @@ Result<SectionSet> parse_contour_json(std::string_view content, const std::strin
 }
 
 // === CSL
+// === CSL labels and hole flags
+namespace {
+struct CslComponentInfo {
+  int plane;
+  bool hole;
+  int parent;  // index among the plane's components
+  int label;
+};
+
+// Where a plane's components nest or overlap otherwise than their hole flags say (a
+// multi-material file: organs inside organs, none flagged as holes), the plane's curves become
+// the boundary of the union of its labelled components (curve_repair.h). Elsewhere nothing
+// changes: nesting already carries the meaning (rule 2).
+void read_csl_labels(SectionSet& set, const std::vector<CslComponentInfo>& info, const std::string& name, Warnings& w) {
+  std::vector<std::vector<CrossSection>> by_plane(set.planes.size());
+  std::vector<std::vector<CslComponent>> comps(set.planes.size());
+  std::vector<PlaneFrame> frames;
+  for (const Plane& pl : set.planes) {
+    Plane unit = pl;
+    const double len = pl.normal.norm();
+    unit.normal /= len;
+    unit.offset /= len;
+    frames.push_back(plane_frame(unit));
+  }
+  for (std::size_t c = 0; c < set.curves.size(); ++c) {
+    const auto p = static_cast<std::size_t>(info[c].plane);
+    CslComponent k;
+    for (const Vec3& q : set.curves[c].points) k.loop.push_back(frames[p].to_2d(q));
+    k.hole = info[c].hole;
+    k.parent = info[c].parent;
+    k.label = info[c].label;
+    comps[p].push_back(std::move(k));
+    by_plane[p].push_back(std::move(set.curves[c]));
+  }
+  set.curves.clear();
+  for (std::size_t p = 0; p < by_plane.size(); ++p) {
+    if (comps[p].size() < 2 || components_agree_with_nesting(comps[p])) {
+      for (auto& c : by_plane[p]) set.curves.push_back(std::move(c));
+      continue;
+    }
+    const std::string where = name + ": plane " + std::to_string(p + 1) + ": ";
+    auto region = region_of_components(comps[p]);
+    if (!region) {
+      w.push_back(where + "its components nest or overlap otherwise than their hole flags say, and " + region.message() +
+                  " failed; read as they are");
+      for (auto& c : by_plane[p]) set.curves.push_back(std::move(c));
+      continue;
+    }
+    std::map<std::pair<double, double>, Vec3> original;  // the 2D point of an input point -> the point
+    for (std::size_t k = 0; k < comps[p].size(); ++k)
+      for (std::size_t i = 0; i < comps[p][k].loop.size(); ++i)
+        original.emplace(std::make_pair(comps[p][k].loop[i].x(), comps[p][k].loop[i].y()), by_plane[p][k].points[i]);
+    for (const auto& loop : *region) {
+      CrossSection cs;
+      cs.plane = static_cast<int>(p);
+      for (const Vec2& q : loop) {
+        const auto it = original.find({q.x(), q.y()});
+        cs.points.push_back(it != original.end() ? it->second : frames[p].to_3d(q));
+      }
+      set.curves.push_back(std::move(cs));
+    }
+    w.push_back(where + std::to_string(comps[p].size()) +
+                " components nest or overlap otherwise than their hole flags say (several materials); the section is "
+                "the union of the labelled ones: " + std::to_string(region->size()) + " curve" +
+                (region->size() == 1 ? "" : "s"));
+  }
+}
+
+}  // namespace
+
 Result<SectionSet> parse_csl(std::string_view content, const std::string& name, Warnings* warnings) {
   LineReader lr(content);
   std::string_view line;
@@ -513,6 +586,7 @@ Result<SectionSet> parse_csl(std::string_view content, const std::string& name, 
   SectionSet set;
   Warnings w;
   std::vector<std::vector<Vec3>> plane_vertices;
+  std::vector<CslComponentInfo> components;  // per curve read
   for (long long p = 0; p < nplanes; ++p) {
     if (!lr.next(line))
       return fail(lr.line(), "file ended early: expected plane " + std::to_string(p + 1) + " of " + std::to_string(nplanes));
@@ -580,6 +654,8 @@ Result<SectionSet> parse_csl(std::string_view content, const std::string& name, 
       if (count < 3)
         return fail(lr.line(), "component has " + std::to_string(count) + " vertices; a curve needs at least 3");
       set.curves.push_back(std::move(cs));
+      components.push_back({static_cast<int>(p), hpos != std::string_view::npos, static_cast<int>(parent),
+                            static_cast<int>(std::min<long long>(label, 1 << 30))});
     }
     plane_vertices.push_back(std::move(verts));
   }
@@ -608,6 +684,7 @@ Result<SectionSet> parse_csl(std::string_view content, const std::string& name, 
                   ": vertices lie on Ax+By+Cz = D rather than Ax+By+Cz+D = 0; read with that sign");
     }
   }
+  read_csl_labels(set, components, name, w);
   if (const Status st = finish_sections(set, name, &w); !st) return st;
   if (warnings) warnings->insert(warnings->end(), w.begin(), w.end());
   return set;

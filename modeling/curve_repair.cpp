@@ -345,11 +345,39 @@ std::string fmt(double v) {
   return s.str();
 }
 
+// The boundary loops of a region given as polygons with holes (polygon_boolean_2.h); a loop
+// that touches itself (CGAL keeps a pinch inside one loop) is split as a curve of its own would
+// be. Vertex ids are 0 ("look the point up"); split failures go to *status.
+std::vector<Loop> boundary_loops(const std::vector<std::vector<std::vector<Vec2>>>& pieces, const CurveRepairOptions& o,
+                                 Status* status) {
+  std::vector<Loop> out;
+  for (const auto& piece : pieces)
+    for (const auto& loop : piece) {
+      Loop l;
+      std::vector<Vec2> pts;
+      for (const Vec2& q : loop) l.push_back(V{q, 0}), pts.push_back(q);
+      drop_repeated(l);
+      if (!first_self_crossing(pts)) {
+        out.push_back(std::move(l));
+        continue;
+      }
+      auto r = repair(l, o);
+      if (!r) {
+        *status = Status::error("its boundary " + r.message());
+        continue;
+      }
+      for (Loop& part : r->loops) out.push_back(std::move(part));
+    }
+  return out;
+}
+
 // === 5. Curves of one plane that cross or touch each other
 // Whether most vertices of `a` lie inside the simple loop `b` (vertices on b count for neither).
 bool mostly_inside(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
   int in = 0, out = 0;
-  for (const Vec2& q : a) {
+  const std::size_t step = std::max<std::size_t>(1, a.size() / 16);  // a sample of 16 vertices
+  for (std::size_t k = 0; k < a.size(); k += step) {
+    const Vec2& q = a[k];
     bool on = false;
     for (std::size_t i = 0; i < b.size() && !on; ++i) on = on_segment(b[i], b[(i + 1) % b.size()], q);
     if (on) continue;
@@ -425,27 +453,8 @@ int merge_crossing_curves(SectionSet& sections, std::vector<std::string>* warnin
         const auto& pts = sections.curves[static_cast<std::size_t>(idx[static_cast<std::size_t>(gi)])].points;
         for (std::size_t k = 0; k < pts.size(); ++k) original.emplace(key(flat[static_cast<std::size_t>(gi)][k]), pts[k]);
       }
-      // The region's boundary loops; one that touches itself (CGAL keeps a pinch inside one
-      // loop) is split as a curve of its own would be.
-      std::vector<Loop> out;
       Status split_status = Status::ok();
-      for (const auto& piece : boolean_of_loops(loops, add))
-        for (const auto& loop : piece) {
-          Loop l;
-          std::vector<Vec2> pts;
-          for (const Vec2& q : loop) l.push_back(V{q, 0}), pts.push_back(q);
-          drop_repeated(l);
-          if (!first_self_crossing(pts)) {
-            out.push_back(std::move(l));
-            continue;
-          }
-          auto r = repair(l, o);
-          if (!r) {
-            split_status = Status::error("its boundary " + r.message());
-            continue;
-          }
-          for (Loop& part : r->loops) out.push_back(std::move(part));
-        }
+      std::vector<Loop> out = boundary_loops(boolean_of_loops(loops, add), o, &split_status);
       Vec2 lo(box[static_cast<std::size_t>(group[0])].x0, box[static_cast<std::size_t>(group[0])].y0), hi = lo;
       for (int gi : group) {
         const Box& b = box[static_cast<std::size_t>(gi)];
@@ -569,6 +578,89 @@ int repair_section_curves(SectionSet& sections, std::vector<std::string>* warnin
     ++repaired;
   }
   return repaired + merge_crossing_curves(sections, warnings, options);
+}
+
+bool components_agree_with_nesting(const std::vector<CslComponent>& comps) {
+  const std::size_t n = comps.size();
+  std::vector<Box> box(n);
+  std::vector<char> crosses(n, 0);  // crosses itself or another component of its label
+  for (std::size_t i = 0; i < n; ++i) {
+    if (comps[i].loop.size() < 3) return true;  // validation's case
+    if (first_self_crossing(comps[i].loop)) crosses[i] = 1;
+    box[i] = {1e300, -1e300, 1e300, -1e300};
+    for (const Vec2& q : comps[i].loop)
+      box[i] = {std::min(box[i].x0, q.x()), std::max(box[i].x1, q.x()), std::min(box[i].y0, q.y()), std::max(box[i].y1, q.y())};
+  }
+  // Two materials that cross or share a boundary disagree with nesting (their union is the
+  // object). Components of one label that cross or touch have no clean depth: they are left
+  // out of the test (validation refuses them, --repair merges them by nesting), as are
+  // components that cross themselves.
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      if (box[i].overlaps(box[j]) && first_crossing_between(comps[i].loop, comps[j].loop)) {
+        if (comps[i].label != comps[j].label) return false;
+        crosses[i] = crosses[j] = 1;
+      }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (crosses[i]) continue;
+    int depth = 0;
+    for (std::size_t j = 0; j < n; ++j)
+      if (i != j && box[i].overlaps(box[j]) && mostly_inside(comps[i].loop, comps[j].loop)) ++depth;
+    const bool outside_material = comps[i].hole || comps[i].label == 0;
+    if ((depth % 2 == 1) != outside_material) return false;
+  }
+  return true;
+}
+
+Result<std::vector<std::vector<Vec2>>> region_of_components(const std::vector<CslComponent>& comps,
+                                                            const CurveRepairOptions& options) {
+  using R = Result<std::vector<std::vector<Vec2>>>;
+  Vec2 lo(1e300, 1e300), hi(-1e300, -1e300);
+  // Each component as simple loops: one that crosses itself is split as --repair would
+  // (non-zero winding), since its plane is rebuilt as a union anyway.
+  std::vector<std::vector<std::vector<Vec2>>> comp_loops(comps.size());
+  for (std::size_t i = 0; i < comps.size(); ++i) {
+    const auto& l = comps[i].loop;
+    bool finite = l.size() >= 3;
+    for (const Vec2& q : l) finite = finite && q.allFinite(), lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+    if (!finite) return R::error("component " + std::to_string(i) + " has fewer than 3 points or a non-finite one");
+    if (comps[i].hole && (comps[i].parent < 0 || comps[i].parent >= static_cast<int>(comps.size())))
+      return R::error("component " + std::to_string(i) + " is a hole of no component");
+    if (!first_self_crossing(l)) {
+      comp_loops[i].push_back(l);
+      continue;
+    }
+    auto fixed = repair_closed_curve(l, options);
+    if (!fixed) return R::error("component " + std::to_string(i) + " crosses itself and " + fixed.message());
+    comp_loops[i] = std::move(*fixed);
+  }
+  std::vector<RegionPart> parts;
+  std::vector<std::vector<Vec2>> subtract;
+  for (std::size_t i = 0; i < comps.size(); ++i) {
+    if (comps[i].hole) continue;
+    if (comps[i].label == 0) {
+      subtract.insert(subtract.end(), comp_loops[i].begin(), comp_loops[i].end());
+      continue;
+    }
+    RegionPart part;
+    part.add = comp_loops[i];
+    for (std::size_t h = 0; h < comps.size(); ++h)
+      if (comps[h].hole && comps[h].parent == static_cast<int>(i))
+        part.remove.insert(part.remove.end(), comp_loops[h].begin(), comp_loops[h].end());
+    parts.push_back(std::move(part));
+  }
+  Status status = Status::ok();
+  std::vector<Loop> out = boundary_loops(union_of_parts(parts, subtract), options, &status);
+  int separated = 0;
+  double moved = 0.0;
+  if (status) status = separate_loops(out, options, (hi - lo).norm(), &separated, &moved);
+  if (!status) return R::error("their union: " + status.message());
+  std::vector<std::vector<Vec2>> loops;
+  for (const Loop& l : out) {
+    loops.emplace_back();
+    for (const V& v : l) loops.back().push_back(v.p);
+  }
+  return loops;
 }
 
 }  // namespace ps

@@ -65,4 +65,30 @@ Result<std::vector<std::vector<Vec2>>> repair_closed_curve(const std::vector<Vec
 int repair_section_curves(SectionSet& sections, std::vector<std::string>* warnings = nullptr,
                           const CurveRepairOptions& options = {});
 
+// === CSL components (contour_io.h): labels and hole flags rather than nesting
+// A CSL plane lists components, each with a label (0: outside) and optionally a hole flag with
+// its parent. For one object the section is the union over labelled components of (component
+// minus its holes), minus the components labelled 0. Usually nesting says the same (rule 2),
+// and the curves stand as read; multi-material files (Abdomen: nine organs) nest labelled
+// components without hole flags, or let them overlap.
+struct CslComponent {
+  std::vector<Vec2> loop;
+  bool hole = false;
+  int parent = -1;  // for a hole: the component it is a hole of
+  int label = 1;
+};
+
+// Whether no two components of different labels cross or touch, and every component that
+// crosses or touches no other has a nesting depth among the plane's components (by most of its
+// vertices) that is odd exactly for holes and label-0 components. Components of one label
+// crossing each other, and components crossing themselves, are left out of the depth test
+// (validation refuses them, --repair splits or merges them by nesting).
+bool components_agree_with_nesting(const std::vector<CslComponent>& comps);
+
+// The boundary curves of the union described above (exact 2D Booleans; pinches split and
+// separated as in repair_section_curves). A component that crosses itself is first split as
+// repair_closed_curve does (non-zero winding).
+Result<std::vector<std::vector<Vec2>>> region_of_components(const std::vector<CslComponent>& comps,
+                                                            const CurveRepairOptions& options = {});
+
 }  // namespace ps

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "modeling/contour_io.h"
+#include "modeling/section_validate.h"
 
 using namespace ps;
 namespace fs = std::filesystem;
@@ -96,6 +97,52 @@ TEST(FormatsIo, CslMarksTheInnerSquareAsAHoleOfTheOuter) {
   const std::string csl = format_csl(s);
   EXPECT_NE(csl.find("\n4h0 1 4 5 6 7\n"), std::string::npos) << csl;
   EXPECT_NE(csl.find("\n4 1 0 1 2 3\n"), std::string::npos) << csl;
+}
+
+// Multi-material CSL (Abdomen): labelled components nested without a hole flag, or
+// overlapping, are one object, the union of the labels (curve_repair.h, read_csl_labels).
+TEST(FormatsIo, CslLabelsNestedWithoutHoleFlagAreOneMaterial) {
+  const std::string head = "CSLC\n1 2\n\n1 8 2 0 0 1 -0.5\n0 0 0.5\n4 0 0.5\n4 4 0.5\n0 4 0.5\n";
+  auto area2 = [](const SectionSet& s, std::size_t c) {
+    double a = 0.0;
+    const auto& p = s.curves[c].points;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      a += p[i].x() * p[(i + 1) % p.size()].y() - p[i].y() * p[(i + 1) % p.size()].x();
+    return std::abs(0.5 * a);
+  };
+  {  // an organ inside another, no hole flag: the outer one alone bounds the object
+    std::vector<std::string> w;
+    auto r = parse(head + "1 1 0.5\n2 1 0.5\n2 2 0.5\n1 2 0.5\n\n4 1 0 1 2 3\n4 2 4 5 6 7\n", ContourFormat::Csl, &w);
+    ASSERT_TRUE(r) << r.message();
+    ASSERT_EQ(r->curves.size(), 1u);
+    EXPECT_DOUBLE_EQ(area2(*r, 0), 16.0);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NE(w[0].find("plane 1: 2 components nest or overlap"), std::string::npos) << w[0];
+    EXPECT_EQ(r->curves[0].points[0], Vec3(0, 0, 0.5));  // input points kept bit for bit
+  }
+  {  // the same square flagged as a hole: read as it is
+    std::vector<std::string> w;
+    auto r = parse(head + "1 1 0.5\n2 1 0.5\n2 2 0.5\n1 2 0.5\n\n4 1 0 1 2 3\n4h0 1 4 5 6 7\n", ContourFormat::Csl, &w);
+    ASSERT_TRUE(r) << r.message();
+    EXPECT_EQ(r->curves.size(), 2u);
+    EXPECT_TRUE(w.empty());
+  }
+  {  // two materials overlapping: their union
+    std::vector<std::string> w;
+    auto r = parse(head + "3 3 0.5\n6 3 0.5\n6 6 0.5\n3 6 0.5\n\n4 1 0 1 2 3\n4 2 4 5 6 7\n", ContourFormat::Csl, &w);
+    ASSERT_TRUE(r) << r.message();
+    ASSERT_EQ(r->curves.size(), 1u);
+    EXPECT_DOUBLE_EQ(area2(*r, 0), 16.0 + 9.0 - 1.0);
+    auto v = validate_sections(*r);
+    EXPECT_TRUE(v) << v.message();
+  }
+  {  // one material crossing itself: a tracing error, read as it is (validation refuses it)
+    std::vector<std::string> w;
+    auto r = parse(head + "3 3 0.5\n6 3 0.5\n6 6 0.5\n3 6 0.5\n\n4 1 0 1 2 3\n4 1 4 5 6 7\n", ContourFormat::Csl, &w);
+    ASSERT_TRUE(r) << r.message();
+    EXPECT_EQ(r->curves.size(), 2u);
+    EXPECT_FALSE(validate_sections(*r));
+  }
 }
 
 TEST(FormatsIo, RoundTripIsStableUnderRepeatedConversion) {
