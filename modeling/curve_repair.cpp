@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <optional>
 #include <sstream>
 #include <unordered_map>
@@ -54,6 +55,26 @@ Box seg_box(const Vec2& a, const Vec2& b) {
   return {std::min(a.x(), b.x()), std::max(a.x(), b.x()), std::min(a.y(), b.y()), std::max(a.y(), b.y())};
 }
 
+// Calls pair(i, j), i < j, for every two boxes that overlap, found by a sweep over x (near
+// linear for a curve's edges, whose boxes are small); stops at the first call returning true.
+template <class F>
+bool sweep_overlaps(const std::vector<Box>& boxes, F&& pair) {
+  std::vector<std::size_t> order(boxes.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return boxes[a].x0 < boxes[b].x0 || (boxes[a].x0 == boxes[b].x0 && a < b);
+  });
+  for (std::size_t a = 0; a < order.size(); ++a) {
+    const Box& ba = boxes[order[a]];
+    for (std::size_t b = a + 1; b < order.size() && boxes[order[b]].x0 <= ba.x1; ++b) {
+      const Box& bb = boxes[order[b]];
+      if (bb.y0 > ba.y1 || bb.y1 < ba.y0) continue;
+      if (pair(std::min(order[a], order[b]), std::max(order[a], order[b]))) return true;
+    }
+  }
+  return false;
+}
+
 // Whether p lies on the closed segment [a, b] (exact).
 bool on_segment(const Vec2& a, const Vec2& b, const Vec2& p) {
   if (orient2d(a, b, p) != 0) return false;
@@ -91,31 +112,30 @@ std::optional<Contact> find_contact(const Loop& l) {
     const Vec2& b = l[(s + 1) % n].p;
     if (orient2d(a, t, b) == 0 && (a - t).dot(b - t) > 0.0) return Contact{Contact::kFoldBack, s, 0, {}};
   }
-  for (std::size_t j = 0; j < n; ++j) {
-    for (std::size_t k = j + 2; k < n; ++k) {
-      if (j == 0 && k == n - 1) continue;  // neighbours through the closing edge
-      if (!boxes[j].overlaps(boxes[k])) continue;
-      const V& a = l[j];
-      const V& b = l[(j + 1) % n];
-      const V& c = l[k];
-      const V& d = l[(k + 1) % n];
-      if (!segments_intersect(a.p, b.p, c.p, d.p)) continue;
-      Contact ct{Contact::kSplit, j, k, {}};
-      if (proper_crossing(a.p, b.p, c.p, d.p)) {
-        ct.x = V{line_intersection(a.p, b.p, c.p, d.p), -1};
-      } else if (on_segment(c.p, d.p, a.p)) {
-        ct.x = a;
-      } else if (on_segment(c.p, d.p, b.p)) {
-        ct.x = b;
-      } else if (on_segment(a.p, b.p, c.p)) {
-        ct.x = c;
-      } else {
-        ct.x = d;
-      }
-      return ct;
+  std::optional<Contact> found;
+  sweep_overlaps(boxes, [&](std::size_t j, std::size_t k) {
+    if (k == j + 1 || (j == 0 && k == n - 1)) return false;  // neighbours: fold-backs above
+    const V& a = l[j];
+    const V& b = l[(j + 1) % n];
+    const V& c = l[k];
+    const V& d = l[(k + 1) % n];
+    if (!segments_intersect(a.p, b.p, c.p, d.p)) return false;
+    Contact ct{Contact::kSplit, j, k, {}};
+    if (proper_crossing(a.p, b.p, c.p, d.p)) {
+      ct.x = V{line_intersection(a.p, b.p, c.p, d.p), -1};
+    } else if (on_segment(c.p, d.p, a.p)) {
+      ct.x = a;
+    } else if (on_segment(c.p, d.p, b.p)) {
+      ct.x = b;
+    } else if (on_segment(a.p, b.p, c.p)) {
+      ct.x = c;
+    } else {
+      ct.x = d;
     }
-  }
-  return std::nullopt;
+    found = ct;
+    return true;
+  });
+  return found;
 }
 
 // The two loops of a split at edges j < k through the contact point x.
@@ -169,26 +189,22 @@ struct PairContact {
 
 std::optional<PairContact> find_pair_contact(const Loop& a, const Loop& b) {
   const std::size_t na = a.size(), nb = b.size();
-  std::vector<Box> bb(nb);
-  Box all_b{1e300, -1e300, 1e300, -1e300};
-  for (std::size_t j = 0; j < nb; ++j) {
-    bb[j] = seg_box(b[j].p, b[(j + 1) % nb].p);
-    all_b = {std::min(all_b.x0, bb[j].x0), std::max(all_b.x1, bb[j].x1), std::min(all_b.y0, bb[j].y0),
-             std::max(all_b.y1, bb[j].y1)};
-  }
-  for (std::size_t i = 0; i < na; ++i) {
+  std::vector<Box> boxes(na + nb);
+  for (std::size_t i = 0; i < na; ++i) boxes[i] = seg_box(a[i].p, a[(i + 1) % na].p);
+  for (std::size_t j = 0; j < nb; ++j) boxes[na + j] = seg_box(b[j].p, b[(j + 1) % nb].p);
+  std::optional<PairContact> found;
+  sweep_overlaps(boxes, [&](std::size_t i, std::size_t k) {
+    if (i >= na || k < na) return false;  // both edges of one loop
+    const std::size_t j = k - na;
     const Vec2& p = a[i].p;
     const Vec2& q = a[(i + 1) % na].p;
-    const Box bi = seg_box(p, q);
-    if (!bi.overlaps(all_b)) continue;
-    for (std::size_t j = 0; j < nb; ++j) {
-      if (!bi.overlaps(bb[j])) continue;
-      const Vec2& r = b[j].p;
-      const Vec2& s = b[(j + 1) % nb].p;
-      if (segments_intersect(p, q, r, s)) return PairContact{i, j, proper_crossing(p, q, r, s)};
-    }
-  }
-  return std::nullopt;
+    const Vec2& r = b[j].p;
+    const Vec2& s = b[(j + 1) % nb].p;
+    if (!segments_intersect(p, q, r, s)) return false;
+    found = PairContact{i, j, proper_crossing(p, q, r, s)};
+    return true;
+  });
+  return found;
 }
 
 // Moves vertex v of loop `l` into the loop along the bisector of its inner angle.

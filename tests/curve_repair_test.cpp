@@ -147,6 +147,27 @@ TEST(CurveRepair, SameResultForReversedAndRotatedInput) {
   }
 }
 
+TEST(CurveRepair, LongCurveWithOnePinchIsSplitWithoutComparingEveryPair) {
+  // 200k points around a circle, through the centre's neighbourhood once: a pinched hole. The
+  // contact search sweeps boxes, so this takes milliseconds (every pair would be 2e10 tests).
+  const int n = 200000;
+  std::vector<Vec2> c;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.0 * M_PI * i / n;
+    c.emplace_back(std::cos(t), std::sin(t));
+    if (i == 0) {  // out to a small triangle inside and back to (1, 0)
+      c.emplace_back(0.5, -0.1);
+      c.emplace_back(0.5, 0.1);
+      c.emplace_back(1.0, 0.0);
+    }
+  }
+  auto r = repair_closed_curve(c);
+  ASSERT_TRUE(r) << r.message();
+  ASSERT_EQ(r->size(), 2u);
+  expect_simple_and_apart(*r);
+  EXPECT_NEAR(std::abs(area((*r)[1])), 0.5 * 0.2 * 0.5, 1e-3);
+}
+
 TEST(CurveRepair, NonFiniteCurveIsAnError) {
   auto r = repair_closed_curve({{0, 0}, {1, 0}, {std::nan(""), 1}});
   EXPECT_FALSE(r);
