@@ -17,6 +17,7 @@
 #include "modeling/face_intersections.h"
 #include "modeling/frustum_builder.h"
 #include "modeling/frustum_connectors.h"
+#include "modeling/frustum_nudge.h"
 #include "modeling/polyhedral_partition.h"
 #include "modeling/mesh_topology.h"
 #include "modeling/gap_fill.h"
@@ -340,6 +341,14 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
         const std::vector<SnappedSolid> with = with_frustum_connectors(fz, part->planes, &connectors);
         if (connectors > 0)
           if (auto c = union_snapped_solids(with, part->planes)) u = std::move(c);
+      }
+      // Frusta whose walls coincide to rounding along shared points (frustum_nudge.h): lean
+      // the walls into each other.
+      if (!u && fz.size() > 1) {
+        int nudged = 0;
+        const std::vector<SnappedSolid> leaned = with_overlap_nudges(fz, part->planes, &nudged);
+        if (nudged > 0)
+          if (auto c = union_snapped_solids(leaned, part->planes)) u = std::move(c);
       }
       for (std::size_t rot = 1; !u && rot < fz.size() + 1 && fz.size() > 1; ++rot) {
         std::vector<SnappedSolid> order(fz);
