@@ -18,7 +18,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -547,19 +546,9 @@ void read_csl_labels(SectionSet& set, const std::vector<CslComponentInfo>& info,
       for (auto& c : by_plane[p]) set.curves.push_back(std::move(c));
       continue;
     }
-    std::map<std::pair<double, double>, Vec3> original;  // the 2D point of an input point -> the point
-    for (std::size_t k = 0; k < comps[p].size(); ++k)
-      for (std::size_t i = 0; i < comps[p][k].loop.size(); ++i)
-        original.emplace(std::make_pair(comps[p][k].loop[i].x(), comps[p][k].loop[i].y()), by_plane[p][k].points[i]);
-    for (const auto& loop : *region) {
-      CrossSection cs;
-      cs.plane = static_cast<int>(p);
-      for (const Vec2& q : loop) {
-        const auto it = original.find({q.x(), q.y()});
-        cs.points.push_back(it != original.end() ? it->second : frames[p].to_3d(q));
-      }
-      set.curves.push_back(std::move(cs));
-    }
+    std::vector<const CrossSection*> inputs;
+    for (const auto& c : by_plane[p]) inputs.push_back(&c);
+    for (auto& c : lift_loops(*region, inputs, frames[p], static_cast<int>(p))) set.curves.push_back(std::move(c));
     w.push_back(where + std::to_string(comps[p].size()) +
                 " components nest or overlap otherwise than their hole flags say (several materials); the section is "
                 "the union of the labelled ones: " + std::to_string(region->size()) + " curve" +

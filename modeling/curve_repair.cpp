@@ -11,8 +11,9 @@
 #include <numeric>
 #include <optional>
 #include <sstream>
-#include <unordered_map>
+#include <map>
 
+#include "modeling/disjoint_sets.h"
 #include "modeling/polygon_boolean_2.h"
 #include "modeling/polyline_crossing.h"
 #include "modeling/section_validate.h"
@@ -53,6 +54,13 @@ struct Box {
 };
 Box seg_box(const Vec2& a, const Vec2& b) {
   return {std::min(a.x(), b.x()), std::max(a.x(), b.x()), std::min(a.y(), b.y()), std::max(a.y(), b.y())};
+}
+
+// The bounding box of a loop's points.
+Box loop_box(const std::vector<Vec2>& loop) {
+  Box b{1e300, -1e300, 1e300, -1e300};
+  for (const Vec2& q : loop) b = {std::min(b.x0, q.x()), std::max(b.x1, q.x()), std::min(b.y0, q.y()), std::max(b.y1, q.y())};
+  return b;
 }
 
 // Calls pair(i, j), i < j, for every two boxes that overlap, found by a sweep over x (near
@@ -285,6 +293,15 @@ Status separate_loops(std::vector<Loop>& loops, const CurveRepairOptions& o, dou
   return Status::ok();
 }
 
+std::vector<std::vector<Vec2>> points_of(const std::vector<Loop>& loops) {
+  std::vector<std::vector<Vec2>> out;
+  for (const Loop& l : loops) {
+    out.emplace_back();
+    for (const V& v : l) out.back().push_back(v.p);
+  }
+  return out;
+}
+
 struct Repaired {
   std::vector<Loop> loops;  // largest |area| first
   int dropped_tiny = 0, dropped_redundant = 0, separated = 0;
@@ -402,11 +419,6 @@ bool mostly_inside(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
   return in > out;
 }
 
-int find_root(std::vector<int>& parent, int i) {
-  while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-  return i;
-}
-
 // Replaces each group of curves of a plane that cross or touch one another by the boundary of
 // the region they make together: curves at even depth (counted among the plane's curves, by
 // most of their vertices) add their inside, curves at odd depth take it away, in order of
@@ -429,22 +441,19 @@ int merge_crossing_curves(SectionSet& sections, std::vector<std::string>* warnin
     std::vector<Box> box(n);
     for (std::size_t i = 0; i < n; ++i) {
       for (const Vec3& p : sections.curves[static_cast<std::size_t>(idx[i])].points) flat[i].push_back(frame.to_2d(p));
-      box[i] = {1e300, -1e300, 1e300, -1e300};
-      for (const Vec2& q : flat[i])
-        box[i] = {std::min(box[i].x0, q.x()), std::max(box[i].x1, q.x()), std::min(box[i].y0, q.y()), std::max(box[i].y1, q.y())};
+      box[i] = loop_box(flat[i]);
     }
-    std::vector<int> parent(n);
-    for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<int>(i);
+    DisjointSets crossing(n);
     bool any = false;
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i + 1; j < n; ++j)
         if (box[i].overlaps(box[j]) && first_crossing_between(flat[i], flat[j])) {
-          parent[static_cast<std::size_t>(find_root(parent, static_cast<int>(i)))] = find_root(parent, static_cast<int>(j));
+          crossing.unite(static_cast<int>(i), static_cast<int>(j));
           any = true;
         }
     if (!any) continue;
     std::vector<std::vector<int>> groups(n);
-    for (std::size_t i = 0; i < n; ++i) groups[static_cast<std::size_t>(find_root(parent, static_cast<int>(i)))].push_back(static_cast<int>(i));
+    for (std::size_t i = 0; i < n; ++i) groups[static_cast<std::size_t>(crossing.find(static_cast<int>(i)))].push_back(static_cast<int>(i));
     for (const auto& group : groups) {
       if (group.size() < 2) continue;
       // Depth among all curves of the plane.
@@ -461,13 +470,11 @@ int merge_crossing_curves(SectionSet& sections, std::vector<std::string>* warnin
       const int d0 = by_depth.front().first;
       std::vector<std::vector<Vec2>> loops;
       std::vector<bool> add;
-      std::unordered_map<std::string, Vec3> original;  // a 2D point's bits -> its input 3D point
-      auto key = [](const Vec2& q) { return std::string(reinterpret_cast<const char*>(q.data()), sizeof(double) * 2); };
+      std::vector<const CrossSection*> inputs;
       for (const auto& [depth, gi] : by_depth) {
         loops.push_back(flat[static_cast<std::size_t>(gi)]);
         add.push_back((depth - d0) % 2 == 0);
-        const auto& pts = sections.curves[static_cast<std::size_t>(idx[static_cast<std::size_t>(gi)])].points;
-        for (std::size_t k = 0; k < pts.size(); ++k) original.emplace(key(flat[static_cast<std::size_t>(gi)][k]), pts[k]);
+        inputs.push_back(&sections.curves[static_cast<std::size_t>(idx[static_cast<std::size_t>(gi)])]);
       }
       Status split_status = Status::ok();
       std::vector<Loop> out = boundary_loops(boolean_of_loops(loops, add), o, &split_status);
@@ -490,16 +497,7 @@ int merge_crossing_curves(SectionSet& sections, std::vector<std::string>* warnin
                               " cross each other and were not merged: " + (st ? "nothing is left of them" : st.message()));
         continue;
       }
-      std::vector<CrossSection> curves;
-      for (const Loop& l : out) {
-        CrossSection c;
-        c.plane = static_cast<int>(pl);
-        for (const V& v : l) {
-          const auto it = v.id >= 0 ? original.find(key(v.p)) : original.end();
-          c.points.push_back(it != original.end() ? it->second : frame.to_3d(v.p));
-        }
-        curves.push_back(std::move(c));
-      }
+      std::vector<CrossSection> curves = lift_loops(points_of(out), inputs, frame, static_cast<int>(pl));
       std::ostringstream m;
       m << "curves " << list.str() << " on plane " << pl << " cross or touch each other: replaced by the "
         << curves.size() << " curve" << (curves.size() > 1 ? "s" : "") << " bounding their region";
@@ -535,10 +533,26 @@ Result<std::vector<std::vector<Vec2>>> repair_closed_curve(const std::vector<Vec
   for (std::size_t i = 0; i < curve.size(); ++i) l.push_back(V{curve[i], static_cast<int>(i)});
   auto r = repair(l, options);
   if (!r) return Result<std::vector<std::vector<Vec2>>>::error(r.message());
-  std::vector<std::vector<Vec2>> out;
-  for (const Loop& loop : r->loops) {
-    out.emplace_back();
-    for (const V& v : loop) out.back().push_back(v.p);
+  return points_of(r->loops);
+}
+
+std::vector<CrossSection> lift_loops(const std::vector<std::vector<Vec2>>& loops,
+                                     const std::vector<const CrossSection*>& inputs, const PlaneFrame& frame, int plane) {
+  std::map<std::pair<double, double>, Vec3> original;  // an input point's 2D image -> the point
+  for (const CrossSection* c : inputs)
+    for (const Vec3& p : c->points) {
+      const Vec2 q = frame.to_2d(p);
+      original.emplace(std::make_pair(q.x(), q.y()), p);
+    }
+  std::vector<CrossSection> out;
+  for (const auto& loop : loops) {
+    CrossSection cs;
+    cs.plane = plane;
+    for (const Vec2& q : loop) {
+      const auto it = original.find({q.x(), q.y()});
+      cs.points.push_back(it != original.end() ? it->second : frame.to_3d(q));
+    }
+    out.push_back(std::move(cs));
   }
   return out;
 }
@@ -603,9 +617,7 @@ bool components_agree_with_nesting(const std::vector<CslComponent>& comps) {
   for (std::size_t i = 0; i < n; ++i) {
     if (comps[i].loop.size() < 3) return true;  // validation's case
     if (first_self_crossing(comps[i].loop)) crosses[i] = 1;
-    box[i] = {1e300, -1e300, 1e300, -1e300};
-    for (const Vec2& q : comps[i].loop)
-      box[i] = {std::min(box[i].x0, q.x()), std::max(box[i].x1, q.x()), std::min(box[i].y0, q.y()), std::max(box[i].y1, q.y())};
+    box[i] = loop_box(comps[i].loop);
   }
   // Two materials that cross or share a boundary disagree with nesting (their union is the
   // object). Components of one label that cross or touch have no clean depth: they are left
@@ -671,12 +683,7 @@ Result<std::vector<std::vector<Vec2>>> region_of_components(const std::vector<Cs
   double moved = 0.0;
   if (status) status = separate_loops(out, options, (hi - lo).norm(), &separated, &moved);
   if (!status) return R::error("their union: " + status.message());
-  std::vector<std::vector<Vec2>> loops;
-  for (const Loop& l : out) {
-    loops.emplace_back();
-    for (const V& v : l) loops.back().push_back(v.p);
-  }
-  return loops;
+  return points_of(out);
 }
 
 }  // namespace ps

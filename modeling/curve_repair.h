@@ -32,6 +32,7 @@
 
 #include "modeling/cross_section.h"
 #include "modeling/mesh.h"
+#include "modeling/section_validate.h"
 #include "modeling/status.h"
 
 namespace ps {
@@ -64,6 +65,12 @@ Result<std::vector<std::vector<Vec2>>> repair_closed_curve(const std::vector<Vec
 // Returns the number of curves repaired plus the number of groups merged.
 int repair_section_curves(SectionSet& sections, std::vector<std::string>* warnings = nullptr,
                           const CurveRepairOptions& options = {});
+
+// Curves on `plane` from loops in its 2D `frame`: a loop point equal, bit for bit, to the 2D
+// image of a point of `inputs` (curves of that plane) takes that input point, so input points
+// survive exactly; any other point is lifted by the frame.
+std::vector<CrossSection> lift_loops(const std::vector<std::vector<Vec2>>& loops,
+                                     const std::vector<const CrossSection*>& inputs, const PlaneFrame& frame, int plane);
 
 // === CSL components (contour_io.h): labels and hole flags rather than nesting
 // A CSL plane lists components, each with a label (0: outside) and optionally a hole flag with

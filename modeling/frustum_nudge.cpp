@@ -26,7 +26,7 @@ std::array<int, 3> sorted_tags(std::array<int, 3> t) {
 }
 
 // Bottom vertices of `a` that are also bottom vertices of `b`.
-std::vector<std::size_t> shared_bottoms(const SnappedSolid& a, const SnappedSolid& b, int pa, int pb, double tol) {
+std::vector<std::size_t> shared_bottoms(const SnappedSolid& a, const SnappedSolid& b, int pb, double tol) {
   std::vector<std::size_t> out;
   const std::size_t ha = a.mesh.vertices.size() / 2, hb = b.mesh.vertices.size() / 2;
   for (std::size_t i = 0; i < ha; ++i) {
@@ -38,7 +38,6 @@ std::vector<std::size_t> shared_bottoms(const SnappedSolid& a, const SnappedSoli
         break;
       }
   }
-  (void)pa;
   return out;
 }
 
@@ -73,8 +72,8 @@ std::vector<SnappedSolid> with_overlap_nudges(const std::vector<SnappedSolid>& f
       const int pi = face[i], pj = face[j];
       if (pi < 0 || pj < 0 || pi == pj || pi >= static_cast<int>(planes.size()) || pj >= static_cast<int>(planes.size()))
         continue;
-      const auto si = shared_bottoms(out[i], out[j], pi, pj, tol);
-      const auto sj = shared_bottoms(out[j], out[i], pj, pi, tol);
+      const auto si = shared_bottoms(out[i], out[j], pj, tol);
+      const auto sj = shared_bottoms(out[j], out[i], pi, tol);
       if (si.empty() || sj.empty()) continue;
       if (union_snapped_solids({out[i], out[j]}, planes)) continue;  // this pair is fine
       for (double fraction : {0.02, 0.05}) {

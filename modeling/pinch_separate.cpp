@@ -1,5 +1,7 @@
 #include "modeling/pinch_separate.h"
 
+#include "modeling/disjoint_sets.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -9,19 +11,6 @@ namespace ps {
 namespace {
 
 std::size_t uz(int i) { return static_cast<std::size_t>(i); }
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int i) {
-    while (parent[uz(i)] != i) i = parent[uz(i)] = parent[uz(parent[uz(i)])];
-    return i;
-  }
-  void unite(int a, int b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[uz(std::max(a, b))] = std::min(a, b);
-  }
-};
 
 struct Half {
   std::uint64_t key;
@@ -58,7 +47,7 @@ int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved, PinchMo
 
   // === Corners glued across edges: both faces of a manifold edge; the faces of one wedge of a
   // pinched edge (step 1 of the header).
-  UnionFind uf(3 * nf);
+  DisjointSets uf(3 * nf);
   struct Around {
     double angle;
     int face;

@@ -173,18 +173,27 @@ TEST(CurveRepair, NonFiniteCurveIsAnError) {
   EXPECT_FALSE(r);
 }
 
-TEST(CurveRepair, SectionSetKeepsInputPointsAndValidates) {
-  // Plane x = 2 (oblique frames round; an axis frame copies coordinates exactly).
+// One plane n . x = offset holding the loops, lifted through the plane's 2D frame.
+SectionSet plane_with(const std::vector<std::vector<Vec2>>& loops, const Vec3& normal = Vec3::UnitZ(),
+                      double offset = 0.5) {
   SectionSet s;
   Plane p;
-  p.normal = Vec3::UnitX();
-  p.offset = 2.0;
+  p.normal = normal;
+  p.offset = offset;
   s.planes.push_back(p);
   const PlaneFrame frame = plane_frame(p);
-  CrossSection pinched{0, {}}, other{0, {}};
-  for (const Vec2& q : pinched_hole()) pinched.points.push_back(frame.to_3d(q));
-  for (const Vec2& q : std::vector<Vec2>{{20, 0}, {25, 0}, {25, 5}, {20, 5}}) other.points.push_back(frame.to_3d(q));
-  s.curves = {pinched, other};
+  for (const auto& l : loops) {
+    CrossSection c{0, {}};
+    for (const Vec2& q : l) c.points.push_back(frame.to_3d(q));
+    s.curves.push_back(c);
+  }
+  return s;
+}
+
+TEST(CurveRepair, SectionSetKeepsInputPointsAndValidates) {
+  // Plane x = 2 (oblique frames round; an axis frame copies coordinates exactly).
+  SectionSet s = plane_with({pinched_hole(), {{20, 0}, {25, 0}, {25, 5}, {20, 5}}}, Vec3::UnitX(), 2.0);
+  const CrossSection pinched = s.curves[0], other = s.curves[1];
   ASSERT_FALSE(validate_sections(s));  // refused as it is (rule 3)
 
   std::vector<std::string> warnings;
@@ -205,21 +214,6 @@ TEST(CurveRepair, SectionSetKeepsInputPointsAndValidates) {
   EXPECT_EQ(v->depth[0], 0);
   EXPECT_EQ(v->depth[2], 1);  // the hole
   EXPECT_EQ(v->depth[1], 0);
-}
-
-SectionSet plane_with(const std::vector<std::vector<Vec2>>& loops) {
-  SectionSet s;
-  Plane p;
-  p.normal = Vec3::UnitZ();
-  p.offset = 0.5;
-  s.planes.push_back(p);
-  const PlaneFrame frame = plane_frame(p);
-  for (const auto& l : loops) {
-    CrossSection c{0, {}};
-    for (const Vec2& q : l) c.points.push_back(frame.to_3d(q));
-    s.curves.push_back(c);
-  }
-  return s;
 }
 
 double total_abs_area(const SectionSet& s, const std::vector<int>& depth) {
