@@ -25,6 +25,7 @@
 #include "modeling/pinch_separate.h"
 #include "modeling/reconstruction_limits.h"
 #include "modeling/section_validate.h"
+#include "modeling/sliver_repair.h"
 #include "modeling/zone_partition.h"
 #include "modeling/zone_stitch.h"
 #include "modeling/zone_box_union.h"
@@ -381,10 +382,29 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       if (!topo.closed || !topo.manifold() || !topo.consistently_oriented) {
         failure = "the stitched surface is not a closed, oriented 2-manifold (" + topo.problem + ")";
       } else {
-        std::vector<int> all(mesh.faces.size());
-        for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-        if (!intersecting_face_pairs(mesh.vertices, mesh.faces, all).empty())
-          failure = "the stitched surface intersects itself";
+        auto crossings = [](const TriMesh& m) {
+          std::vector<int> all(m.faces.size());
+          for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+          return intersecting_face_pairs(m.vertices, m.faces, all);
+        };
+        auto crossing = crossings(mesh);
+        // Flat slivers that rounding turned over (sliver_repair.h): removed and the seam
+        // zipped, kept when the surface is then closed, manifold and free of crossings.
+        if (!crossing.empty()) {
+          TriMesh zipped = mesh;
+          if (const int removed = remove_folded_slivers(zipped, crossing, 1e-10 * box.diagonal()); removed > 0) {
+            const MeshTopology zt = mesh_topology(zipped);
+            if (zt.closed && zt.manifold() && zt.consistently_oriented && crossings(zipped).empty()) {
+              canonicalize(zipped);
+              mesh = std::move(zipped);
+              crossing.clear();
+              rep.warnings.push_back("rounding had folded " + std::to_string(removed) +
+                                     " flat sliver face(s) of the exact zone unions; they were removed and the seam "
+                                     "closed without moving a vertex");
+            }
+          }
+        }
+        if (!crossing.empty()) failure = "the stitched surface intersects itself";
       }
       rep.timings.stitch_ms += ms_since(t);
     }

@@ -132,7 +132,8 @@ std::uint64_t edge_key(int a, int b) {
   return lo << 32 | hi;
 }
 
-// Splits faces at vertices lying inside their boundary edges; returns the number of splits.
+}  // namespace
+
 int split_t_junctions(TriMesh& m, double tol) {
   int total = 0;
   for (int pass = 0; pass < 4; ++pass) {
@@ -229,8 +230,6 @@ int split_t_junctions(TriMesh& m, double tol) {
   }
   return total;
 }
-
-}  // namespace
 
 namespace {
 

@@ -35,6 +35,12 @@ TriMesh stitch_zones(const Partition& partition, const std::vector<TriMesh>& zon
 TriMesh stitch_polyhedral_zones(const PolyPartition& partition, const std::vector<TriMesh>& zone_solids, double tol,
                                 StitchReport* report = nullptr);
 
+// Splits faces at vertices lying inside their boundary edges (edges used by one face), within
+// tol of the edge and more than tol from its ends, so that the vertices of one side of a seam
+// become vertices of the other; returns the number of edges split. Faces whose own apex lies on
+// the split edge are dropped (flat slivers).
+int split_t_junctions(TriMesh& m, double tol);
+
 // Welds vertices closer than tol (first occurrence wins, deterministic), drops faces that became
 // degenerate and unreferenced vertices.
 TriMesh weld_vertices(const TriMesh& mesh, double tol);
