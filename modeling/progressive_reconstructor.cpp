@@ -380,6 +380,22 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       MeshTopology topo = mesh_topology(mesh);
       if (repair_stitched_surface(mesh, topo, box.diagonal(), rep.warnings)) topo = mesh_topology(mesh);
       if (!topo.closed || !topo.manifold() || !topo.consistently_oriented) {
+        // Vertices that rounding left within the weld tolerance of each other inside a closed
+        // part (the weld only merges along open seams) can leave a doubled face or an edge
+        // with four faces (stress seed 37: two exact points 1.6e-17 apart): merged where
+        // their fans cross, kept when the surface is then a closed, oriented manifold.
+        TriMesh merged = mesh;
+        if (repair_close_vertices(merged, 1e-10 * box.diagonal()) && merged.vertices.size() < mesh.vertices.size()) {
+          const MeshTopology mt = mesh_topology(merged);
+          if (mt.closed && mt.manifold() && mt.consistently_oriented) {
+            rep.warnings.push_back("rounding had left " + std::to_string(mesh.vertices.size() - merged.vertices.size()) +
+                                   " vertex(es) within 1e-10 of the diagonal of another one; they were merged");
+            mesh = std::move(merged);
+            topo = mt;
+          }
+        }
+      }
+      if (!topo.closed || !topo.manifold() || !topo.consistently_oriented) {
         failure = "the stitched surface is not a closed, oriented 2-manifold (" + topo.problem + ")";
       } else {
         auto crossings = [](const TriMesh& m) {

@@ -219,19 +219,28 @@ TEST(ZoneUnion, RefusesASelfIntersectingPrimitive) {
 }
 
 // Oblique cases of `recon_stress_bench --oblique-every 1 --oblique-only` (defaults: 2-6 axis
-// planes, curves of 40-200 points) refused because the stitched surface crossed itself: the
-// exact zone unions held flat slivers (seed 73: one cap 3.5e-17 high on a 0.2-long edge; seed
-// 74: a strip of five faces of area 1e-19 to 1e-21 along a crease) that rounding turned over.
-// They are removed and the seam zipped (modeling/sliver_repair.h); the result must meet every
-// guarantee and say so in a warning.
+// planes, curves of 40-200 points) refused because rounding the exact zone unions spoiled the
+// stitched surface:
+// - 73, 74: it crossed itself over flat slivers of the exact unions (seed 73: one cap 3.5e-17
+//   high on a 0.2-long edge; seed 74: a strip of five faces of area 1e-19 to 1e-21 along a
+//   crease) that rounding turned over; they are removed and the seam zipped
+//   (modeling/sliver_repair.h).
+// - 37: two exact points 1.6e-17 apart inside a closed part left a doubled face and an edge
+//   with four faces; the close vertices are merged (repair_close_vertices).
+// The result must meet every guarantee and name the repair in a warning.
 ps::SectionSet oblique_stress_case(std::uint64_t seed) {
   return generated_case(seed, 6, 40, 200, 1 + static_cast<int>(seed % 3));
 }
 
-class FoldedSliverSeed : public ::testing::TestWithParam<int> {};
+struct RoundingRepair {
+  int seed;
+  const char* warning;
+};
 
-TEST_P(FoldedSliverSeed, ReconstructsWithTheSliversRemoved) {
-  const auto seed = static_cast<std::uint64_t>(GetParam());
+class RoundingRepairSeed : public ::testing::TestWithParam<RoundingRepair> {};
+
+TEST_P(RoundingRepairSeed, ReconstructsWithTheRepairNamed) {
+  const auto seed = static_cast<std::uint64_t>(GetParam().seed);
   const ps::SectionSet sections = oblique_stress_case(seed);
   ps::ReconstructOptions options;
   options.improve = false;
@@ -239,15 +248,17 @@ TEST_P(FoldedSliverSeed, ReconstructsWithTheSliversRemoved) {
   ps::ReconstructReport report;
   auto mesh = ps::reconstruct(sections, options, &report);
   ASSERT_TRUE(mesh) << "seed " << seed << ": " << mesh.message();
-  bool zipped = false;
-  for (const auto& w : report.warnings) zipped = zipped || w.find("flat sliver") != std::string::npos;
-  EXPECT_TRUE(zipped) << "seed " << seed << ": the repair was not needed (the case no longer tests it)";
+  bool named = false;
+  for (const auto& w : report.warnings) named = named || w.find(GetParam().warning) != std::string::npos;
+  EXPECT_TRUE(named) << "seed " << seed << ": the repair was not needed (the case no longer tests it)";
   const auto g = ps::check_guarantees(*mesh);
   EXPECT_TRUE(g.valid()) << "seed " << seed << ": " << g.problem();
   const auto pts = sections.all_points();
   EXPECT_LE(ps::max_distance_to_surface(*mesh, pts), 1e-6 * ps::bounding_box(pts).diagonal()) << "seed " << seed;
 }
 
-INSTANTIATE_TEST_SUITE_P(ObliqueStress, FoldedSliverSeed, ::testing::Values(73, 74));
+INSTANTIATE_TEST_SUITE_P(ObliqueStress, RoundingRepairSeed,
+                         ::testing::Values(RoundingRepair{73, "flat sliver"}, RoundingRepair{74, "flat sliver"},
+                                           RoundingRepair{37, "were merged"}));
 
 }  // namespace
