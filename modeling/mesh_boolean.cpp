@@ -4,7 +4,8 @@
 #include "modeling/mesh_boolean.h"
 #include "modeling/zone_union.h"
 
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include "modeling/exact_snap.h"
+
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
@@ -18,13 +19,24 @@
 #include "modeling/zone_stitch.h"
 
 namespace ps {
+
+Vec3 exact::rounded_point(const K::Point_3& p) {
+  // Round from the exact value: to_double of a lazy number depends on how far it was
+  // evaluated, which would make the output depend on evaluation history. An interval
+  // approximation that is a single double (every input point) is the exact value already.
+  const auto& a = CGAL::approx(p);
+  if (a.x().is_point() && a.y().is_point() && a.z().is_point()) return Vec3(a.x().inf(), a.y().inf(), a.z().inf());
+  const auto& e = CGAL::exact(p);
+  return Vec3(CGAL::to_double(e.x()), CGAL::to_double(e.y()), CGAL::to_double(e.z()));
+}
+
 namespace {
 
 // Exact constructions: the sequential unions feed each result into the next one, and rounded
 // intersection points (Epick) made CGAL 5.5 crash in the coplanar-face code on zone corners
 // where three sections meet.
-using K = CGAL::Exact_predicates_exact_constructions_kernel;
-using SurfaceMesh = CGAL::Surface_mesh<K::Point_3>;
+using K = exact::K;
+using SurfaceMesh = exact::SurfaceMesh;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 SurfaceMesh to_surface_mesh(const TriMesh& m) {
@@ -64,19 +76,7 @@ TriMesh to_tri_mesh(SurfaceMesh& sm) {
   sm.collect_garbage();
   TriMesh m;
   m.vertices.reserve(sm.number_of_vertices());
-  for (auto v : sm.vertices()) {
-    const auto& p = sm.point(v);
-    // Round from the exact value: to_double of a lazy number depends on how far it was
-    // evaluated, which would make the output depend on evaluation history. An interval
-    // approximation that is a single double (every input point) is the exact value already.
-    const auto& a = CGAL::approx(p);
-    if (a.x().is_point() && a.y().is_point() && a.z().is_point()) {
-      m.vertices.emplace_back(a.x().inf(), a.y().inf(), a.z().inf());
-    } else {
-      const auto& e = CGAL::exact(p);
-      m.vertices.emplace_back(CGAL::to_double(e.x()), CGAL::to_double(e.y()), CGAL::to_double(e.z()));
-    }
-  }
+  for (auto v : sm.vertices()) m.vertices.push_back(exact::rounded_point(sm.point(v)));
   m.faces.reserve(sm.number_of_faces());
   for (auto f : sm.faces()) {
     Face tri{};
@@ -240,6 +240,23 @@ bool has_degenerate_face(const SurfaceMesh& sm) {
 }
 
 }  // namespace
+
+namespace exact {
+
+SurfaceMesh snapped_surface_mesh(const SnappedSolid& s, const std::vector<Plane>& planes) {
+  return to_surface_mesh(s, planes);
+}
+
+std::string unusable_operand(const SurfaceMesh& sm) {
+  if (sm.is_empty()) return "is empty";
+  if (!CGAL::is_valid_polygon_mesh(sm) || !CGAL::is_closed(sm)) return "is not a closed mesh";
+  if (has_degenerate_face(sm)) return "has a degenerate face";
+  return {};
+}
+
+TriMesh rounded(SurfaceMesh& sm) { return to_tri_mesh(sm); }
+
+}  // namespace exact
 
 Result<TriMesh> union_snapped_solids(const std::vector<SnappedSolid>& solids, const std::vector<Plane>& planes) {
   if (solids.empty()) return TriMesh{};

@@ -12,7 +12,9 @@
 #include <mutex>
 #include <thread>
 #include <tuple>
+#include <cstdio>
 
+#include "modeling/cavity_fill.h"
 #include "modeling/cylinder_builder.h"
 #include "modeling/face_intersections.h"
 #include "modeling/frustum_builder.h"
@@ -20,6 +22,7 @@
 #include "modeling/frustum_nudge.h"
 #include "modeling/polyhedral_partition.h"
 #include "modeling/mesh_topology.h"
+#include "modeling/nef_union.h"
 #include "modeling/gap_fill.h"
 #include "modeling/parallel_over.h"
 #include "modeling/pinch_separate.h"
@@ -312,7 +315,7 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
     std::vector<int> todo;
     for (std::size_t z = 0; z < frusta->size(); ++z)
       if (!(*frusta)[z].solids.empty() && redo[z]) todo.push_back(static_cast<int>(z));
-    std::vector<std::string> errors(todo.size());
+    std::vector<std::string> errors(todo.size()), notes(todo.size());
     // Progress per zone for long runs (the callback is called under a lock, from the worker
     // threads).
     std::atomic<std::size_t> zones_done{0};
@@ -359,6 +362,21 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
           std::reverse(order.begin(), order.end());
         u = union_snapped_solids(order, part->planes);
       }
+      // Every order met a non-manifold or corrupt intermediate: all frusta at once, exactly
+      // (nef_union.h), where a third frustum may cover a pair's contact. A union that really
+      // is not a 2-manifold (frusta touching without overlapping) is taken as it is only in
+      // the last attempt (its contacts are then left to the pinch resolution of the stitched
+      // surface); before that, the zone is rebuilt with other margins first.
+      if (!u && fz.size() > 1) {
+        const bool last = attempt + 1 == std::size(attempts);
+        bool manifold = true;
+        auto c = union_snapped_solids_at_once(fz, part->planes, /*allow_non_manifold=*/last, &manifold);
+        if (c && !manifold)
+          notes[i] = "zone " + std::to_string(z) + ": frusta touch without overlapping; their exact union was kept with "
+                     "the contact, for the stitch to separate or join";
+        if (c) u = std::move(c);
+        else u = Result<TriMesh>::error(u.message() + "; united at once: " + c.message());
+      }
       if (u) {
         solids[z] = std::move(*u);
         canonicalize(solids[z]);
@@ -371,6 +389,8 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
     failure.clear();
     for (const auto& e : errors)
       if (!e.empty() && failure.empty()) failure = e;
+    for (auto& note : notes)
+      if (!note.empty()) rep.warnings.push_back(std::move(note));
     if (failure.empty()) {
       // Stitch, and check what the rounding of exact unions may have broken: a closed
       // manifold (checked again by the caller) without self-intersections (two nearly
@@ -732,6 +752,15 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
                                   topo.problem + ")");
   if (!(topo.signed_volume > 0.0))
     return Result<TriMesh>::error("reconstruction failed: the stitched surface is inside out");
+  if (double cavity_volume = 0.0; topo.components > 1) {
+    if (const int filled = fill_curveless_cavities(mesh, rep.curve_vertex, cavity_volume); filled > 0) {
+      char share[32];
+      std::snprintf(share, sizeof share, "%.2g", 100.0 * cavity_volume / topo.signed_volume);
+      rep.warnings.push_back(std::to_string(filled) + " empty pocket(s) enclosed between primitives, with no input curve on "
+                             "them (" + share + "% of the volume), were filled");
+      check(mesh);
+    }
+  }
   rep.components = topo.components;
   if (topo.components > 1)
     rep.warnings.push_back("result has " + std::to_string(topo.components) +

@@ -4,48 +4,19 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <string>
 
 #include "modeling/mesh_io.h"
 #include "modeling/mesh_queries.h"
 #include "modeling/mesh_topology.h"
 #include "modeling/zone_union.h"
+#include "tests/zone_fixture.h"
 
 namespace ps {
 namespace {
 
-const std::string kDir = std::string(PLANESKETCH_SOURCE_DIR) + "/tests/data/zone_nudge_seed9/";
-
-std::vector<Plane> read_planes() {
-  std::vector<Plane> planes;
-  std::ifstream f(kDir + "planes.txt");
-  double a, b, c, d;
-  while (f >> a >> b >> c >> d) {
-    Plane p;
-    p.normal = Vec3(a, b, c);
-    p.offset = d;
-    planes.push_back(p);
-  }
-  return planes;
-}
-
-std::vector<SnappedSolid> read_frusta() {
-  std::vector<SnappedSolid> out;
-  for (int i = 0; i < 6; ++i) {
-    SnappedSolid s;
-    auto m = read_mesh(kDir + "f" + std::to_string(i) + ".obj");
-    EXPECT_TRUE(m) << m.message();
-    if (!m) return {};
-    s.mesh = *m;
-    std::ifstream t(kDir + "f" + std::to_string(i) + ".tags");
-    std::array<int, 3> tag{};
-    while (t >> tag[0] >> tag[1] >> tag[2]) s.tags.push_back(tag);
-    EXPECT_EQ(s.tags.size(), s.mesh.vertices.size());
-    out.push_back(std::move(s));
-  }
-  return out;
-}
+std::vector<Plane> read_planes() { return testing::read_seed9_planes(); }
+std::vector<SnappedSolid> read_frusta() { return testing::read_seed9_frusta(); }
 
 TEST(FrustumNudge, CoincidentWallsLeanIntoEachOtherAndTheZoneUnites) {
   const auto planes = read_planes();
