@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <mutex>
 #include <string>
 
 namespace ps {
@@ -18,6 +19,11 @@ Result<TriMesh> union_snapped_solids_at_once(const std::vector<SnappedSolid>& so
                                              bool allow_non_manifold, bool* manifold) {
   using Nef = CGAL::Nef_polyhedron_3<exact::K>;
   if (solids.empty()) return TriMesh{};
+  // One at a time: the zone unions run in parallel, and CGAL does not document
+  // Nef_polyhedron_3 as safe to use from several threads at once (its construction goes
+  // through shared static helpers). The fallback is rare, so serialising it costs little.
+  static std::mutex one_at_a_time;
+  const std::lock_guard<std::mutex> hold(one_at_a_time);
   Nef acc;  // the empty set
   for (std::size_t i = 0; i < solids.size(); ++i) {
     const exact::SurfaceMesh sm = exact::snapped_surface_mesh(solids[i], planes);

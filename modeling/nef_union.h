@@ -9,7 +9,7 @@
 // so the whole union is a 2-manifold while every order of pairwise unions meets a non-manifold
 // intermediate (the caller tries rotations and the reverse). A Nef polyhedron has no such
 // intermediate restriction. It costs about two orders of magnitude more than corefinement, so
-// it runs only for zones whose unions all failed.
+// it runs only for zones whose unions all failed, one zone at a time (a process-wide lock).
 //
 // The result is the regularised union's boundary, triangulated, rounded from the exact values
 // like union_snapped_solids (so a point shared with a neighbouring zone rounds the same way).
