@@ -160,11 +160,7 @@ TriMesh prism(const PieceCache& pc, int k, double c0, double c1, const std::vect
   return m;
 }
 
-bool self_intersects(const TriMesh& m) {
-  std::vector<int> all(m.faces.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-  return !intersecting_face_pairs(m.vertices, m.faces, all).empty();
-}
+bool self_intersects(const TriMesh& m) { return !self_intersecting_pairs(m).empty(); }
 
 // The prism of a zone's last segment with the perturbed top, checked: the top test above is
 // local (caps and wall edges in 2D), so the whole prism is tested for self-intersection and

@@ -271,4 +271,10 @@ std::vector<std::array<int, 2>> intersecting_face_pairs(const std::vector<Vec3>&
   return pairs;
 }
 
+std::vector<std::array<int, 2>> self_intersecting_pairs(const TriMesh& mesh) {
+  std::vector<int> all(mesh.faces.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  return intersecting_face_pairs(mesh.vertices, mesh.faces, all);
+}
+
 }  // namespace ps

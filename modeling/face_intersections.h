@@ -22,4 +22,7 @@ std::vector<std::array<int, 2>> intersecting_face_pairs(const std::vector<Vec3>&
                                                         const std::vector<Face>& faces,
                                                         const std::vector<int>& query_faces);
 
+// Every improperly intersecting pair of faces of the mesh (all faces as queries).
+std::vector<std::array<int, 2>> self_intersecting_pairs(const TriMesh& mesh);
+
 }  // namespace ps

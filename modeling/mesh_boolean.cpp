@@ -109,9 +109,7 @@ Status check_primitive(const TriMesh& m, std::size_t index) {
   if (!t.closed || !t.manifold() || !t.consistently_oriented)
     return Status::error(which + " is not a closed, oriented 2-manifold (" + t.problem + ")");
   if (!(signed_volume(m, m.vertices.front()) > 0)) return Status::error(which + " is inside out (negative volume)");
-  std::vector<int> all(m.faces.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-  if (!intersecting_face_pairs(m.vertices, m.faces, all).empty()) return Status::error(which + " intersects itself");
+  if (!self_intersecting_pairs(m).empty()) return Status::error(which + " intersects itself");
   return Status::ok();
 }
 

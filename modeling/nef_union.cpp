@@ -3,13 +3,12 @@
 #include "modeling/nef_union.h"
 
 #include "modeling/exact_snap.h"
+#include "modeling/zone_stitch.h"
 
 #include <CGAL/Nef_polyhedron_3.h>
 #include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
 
 #include <algorithm>
-#include <array>
-#include <map>
 #include <mutex>
 #include <string>
 
@@ -35,38 +34,28 @@ Result<TriMesh> union_snapped_solids_at_once(const std::vector<SnappedSolid>& so
       return Result<TriMesh>::error(std::string("exact union of all frusta failed: ") + e.what());
     }
   }
-  if (manifold) *manifold = acc.is_simple();
-  if (!acc.is_simple()) {
+  const bool simple = acc.is_simple();
+  if (manifold) *manifold = simple;
+  if (!simple) {
     if (!allow_non_manifold) return Result<TriMesh>::error("the union of all frusta is not a 2-manifold either");
     // The boundary as triangles on shared exact points: frusta that touch along an edge or at
     // a point share those vertices, which the stitch's pinch resolution then separates or joins.
     std::vector<exact::K::Point_3> points;
     std::vector<std::vector<std::size_t>> polygons;
     CGAL::convert_nef_polyhedron_to_polygon_soup(acc, points, polygons, /*triangulate_all_faces=*/true);
-    // Points are listed once per shell: the same exact point (hence the same rounded one)
-    // becomes one vertex.
     TriMesh m;
-    std::map<std::array<double, 3>, int> index_of;
-    std::vector<int> vertex_of(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const Vec3 p = exact::rounded_point(points[i]);
-      const auto [it, added] = index_of.try_emplace({p.x(), p.y(), p.z()}, static_cast<int>(m.vertices.size()));
-      if (added) m.vertices.push_back(p);
-      vertex_of[i] = it->second;
-    }
-    // The soup of a non-manifold Nef polyhedron can list a facet once per shell that reaches
-    // it: identical triangles are kept once.
-    std::vector<Face> seen;
+    m.vertices.reserve(points.size());
+    for (const auto& p : points) m.vertices.push_back(exact::rounded_point(p));
     for (const auto& poly : polygons) {
       if (poly.size() != 3) return Result<TriMesh>::error("the exact union of all frusta gave a face that is not a triangle");
-      Face f{vertex_of[poly[0]], vertex_of[poly[1]], vertex_of[poly[2]]};
-      if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) continue;
-      while (f[0] > f[1] || f[0] > f[2]) f = Face{f[1], f[2], f[0]};
-      seen.push_back(f);
+      m.faces.push_back({static_cast<int>(poly[0]), static_cast<int>(poly[1]), static_cast<int>(poly[2])});
     }
-    std::sort(seen.begin(), seen.end());
-    seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
-    m.faces = std::move(seen);
+    // Points are listed once per shell: the same exact point (hence the same rounded one)
+    // becomes one vertex (a weld of identical positions only). A facet can be listed once per
+    // shell that reaches it: in canonical order identical triangles are neighbours, kept once.
+    m = weld_vertices(m, 0.0);
+    canonicalize(m);
+    m.faces.erase(std::unique(m.faces.begin(), m.faces.end()), m.faces.end());
     return m;
   }
   exact::SurfaceMesh out;

@@ -8,11 +8,11 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <mutex>
 #include <thread>
 #include <tuple>
-#include <cstdio>
 
 #include "modeling/cavity_fill.h"
 #include "modeling/cylinder_builder.h"
@@ -418,19 +418,14 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       if (!topo.closed || !topo.manifold() || !topo.consistently_oriented) {
         failure = "the stitched surface is not a closed, oriented 2-manifold (" + topo.problem + ")";
       } else {
-        auto crossings = [](const TriMesh& m) {
-          std::vector<int> all(m.faces.size());
-          for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-          return intersecting_face_pairs(m.vertices, m.faces, all);
-        };
-        auto crossing = crossings(mesh);
+        auto crossing = self_intersecting_pairs(mesh);
         // Flat slivers that rounding turned over (sliver_repair.h): removed and the seam
         // zipped, kept when the surface is then closed, manifold and free of crossings.
         if (!crossing.empty()) {
           TriMesh zipped = mesh;
           if (const int removed = remove_folded_slivers(zipped, crossing, 1e-10 * box.diagonal()); removed > 0) {
             const MeshTopology zt = mesh_topology(zipped);
-            if (zt.closed && zt.manifold() && zt.consistently_oriented && crossings(zipped).empty()) {
+            if (zt.closed && zt.manifold() && zt.consistently_oriented && self_intersecting_pairs(zipped).empty()) {
               canonicalize(zipped);
               mesh = std::move(zipped);
               crossing.clear();

@@ -117,10 +117,7 @@ Status check_solid(const TriMesh& m, const char* which) {
   if (!(t.signed_volume > 0)) return Status::error(std::string(which) + " is inside out (negative volume)");
   // The solid is a valid halfedge mesh (checked above), so the face-pair test needs no soup
   // repair first (what does_self_intersect does for arbitrary soups); same predicates.
-  std::vector<int> all(m.faces.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-  if (!intersecting_face_pairs(m.vertices, m.faces, all).empty())
-    return Status::error(std::string(which) + " intersects itself");
+  if (!self_intersecting_pairs(m).empty()) return Status::error(std::string(which) + " intersects itself");
   if (memoable) remember(m, h);
   return Status::ok();
 }
