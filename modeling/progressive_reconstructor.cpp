@@ -420,7 +420,8 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       } else {
         auto crossing = self_intersecting_pairs(mesh);
         // Flat slivers that rounding turned over (sliver_repair.h): removed and the seam
-        // zipped, kept when the surface is then closed, manifold and free of crossings.
+        // zipped (vertices a rounding step apart at its ends merged), kept when the surface
+        // is then closed, manifold and free of crossings.
         if (!crossing.empty()) {
           TriMesh zipped = mesh;
           if (const int removed = remove_folded_slivers(zipped, crossing, 1e-10 * box.diagonal()); removed > 0) {
@@ -431,7 +432,7 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
               crossing.clear();
               rep.warnings.push_back("rounding had folded " + std::to_string(removed) +
                                      " flat sliver face(s) of the exact zone unions; they were removed and the seam "
-                                     "closed without moving a vertex");
+                                     "closed (no vertex moved by more than 1e-10 of the diagonal)");
             }
           }
         }

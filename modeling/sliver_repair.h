@@ -23,8 +23,11 @@ namespace ps {
 // Flat faces near the crossings (a face whose height over its longest edge is at most tol, with
 // a vertex on a crossing face, and the flat faces sharing an edge with those) are removed; the
 // hole each strip leaves has two sides that are one segment to within tol, and it is zipped by
-// splitting the faces of one side at the vertices of the other (split_t_junctions). Vertices
-// are not moved, so curve points stay where they were. Returns the number of faces removed, 0
+// splitting the faces of one side at the vertices of the other (split_t_junctions). Where the
+// two sides still meet at separate vertices within tol of each other (rounding put the ends of
+// a strip a step apart: stress seed 38), vertices on the open seam are merged, each into the
+// smallest index of its group; no other vertex moves, so curve points stay within tol of where
+// they were. Returns the number of faces removed, 0
 // when there was none (mesh unchanged). The caller checks the result (closed, manifold, no
 // crossing) and keeps the original when the check fails.
 int remove_folded_slivers(TriMesh& mesh, const std::vector<std::array<int, 2>>& crossing, double tol);

@@ -225,6 +225,8 @@ TEST(ZoneUnion, RefusesASelfIntersectingPrimitive) {
 //   high on a 0.2-long edge; seed 74: a strip of five faces of area 1e-19 to 1e-21 along a
 //   crease) that rounding turned over; they are removed and the seam zipped
 //   (modeling/sliver_repair.h).
+// - 38: the same, where the seam's two sides then met at two vertices 1 ulp apart (each end of
+//   the removed strip); those are merged.
 // - 37: two exact points 1.6e-17 apart inside a closed part left a doubled face and an edge
 //   with four faces; the close vertices are merged (repair_close_vertices).
 // - 13, 29, 97: a zone's frusta touch without overlapping (29: CGAL returned a corrupt mesh for
@@ -263,6 +265,7 @@ TEST_P(RoundingRepairSeed, ReconstructsWithTheRepairNamed) {
 
 INSTANTIATE_TEST_SUITE_P(ObliqueStress, RoundingRepairSeed,
                          ::testing::Values(RoundingRepair{73, "flat sliver"}, RoundingRepair{74, "flat sliver"},
+                                           RoundingRepair{38, "flat sliver"},
                                            RoundingRepair{37, "were merged"},
                                            RoundingRepair{13, "touch without overlapping"},
                                            RoundingRepair{29, "touch without overlapping"},
