@@ -11,6 +11,12 @@
 // intermediate restriction. It costs about two orders of magnitude more than corefinement, so
 // it runs only for zones whose unions all failed, one zone at a time (a process-wide lock).
 //
+// Frusta meeting face to face on a wall they share only up to rounding (top corners an ulp
+// apart, the quad split along different diagonals) would leave a crack a few 1e-17 wide
+// between them; before the union, points of different frusta within 1e-14 of the zone's size
+// are made one exact point and such walls one triangulation, so the two glue (a frustum that
+// this would make unusable is left as it was).
+//
 // The result is the regularised union's boundary, triangulated, rounded from the exact values
 // like union_snapped_solids (so a point shared with a neighbouring zone rounds the same way).
 // When that boundary is not a 2-manifold (the union really is not one: frusta touching along an
