@@ -311,7 +311,7 @@ int main(int argc, char** argv) {
   const char* const families[] = {"clean", "perturbed", "bad"};
   std::map<std::string, std::map<std::string, int>> by_family, by_variant;  // family/variant -> outcome -> cases
   std::map<std::string, int> outcome, refusals;
-  std::vector<std::string> failures, refused_valid;
+  std::vector<std::string> failures, refused_valid, slow;
   std::vector<double> wall_all, wall_ok, cpu_ok;
   int oblique_cases = 0, oblique_ok = 0;
   for (int c = 0; c < a.cases; ++c) {
@@ -387,6 +387,11 @@ int main(int argc, char** argv) {
       cpu_ok.push_back(r.cpu_s);
     }
     if (!r.timed_out) wall_all.push_back(r.wall_s);
+    // Issue 8's bound: no case over 10 s (listed whatever its outcome; the hang timeout is
+    // separate and larger).
+    if (!r.timed_out && r.wall_s > 10.0)
+      slow.push_back("seed " + std::to_string(seed) + " (" + families[family] + ", " + variant + "): " + kind + ", " +
+                     std::to_string(r.wall_s).substr(0, 5) + " s wall, " + std::to_string(r.cpu_s).substr(0, 5) + " s CPU");
     outcome[kind]++;
     by_family[families[family]][kind]++;
     by_variant[std::string(families[family]) + ": " + variant][kind]++;
@@ -444,6 +449,10 @@ int main(int argc, char** argv) {
   if (!refused_valid.empty()) {
     std::printf("\nValid inputs refused:\n");
     for (const auto& f : refused_valid) std::printf("- %s\n", f.c_str());
+  }
+  if (!slow.empty()) {
+    std::printf("\nCases over 10 s:\n");
+    for (const auto& f : slow) std::printf("- %s\n", f.c_str());
   }
   if (!failures.empty()) {
     std::printf("\nCases that crashed, hung or broke a guarantee:\n");

@@ -4,6 +4,7 @@
 #include "modeling/mesh_boolean.h"
 #include "modeling/zone_union.h"
 
+#include "modeling/coincident_walls.h"
 #include "modeling/exact_snap.h"
 
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
@@ -283,6 +284,12 @@ Result<TriMesh> union_snapped_solids(const std::vector<SnappedSolid>& solids, co
       const std::size_t a = find(i), b = find(j);
       if (a != b) group[std::max(a, b)] = std::min(a, b);
     }
+  // Walls two frusta share up to rounding made one surface (coincident_walls.h), so the pair
+  // glues instead of being refused as a non-manifold contact.
+  std::vector<SurfaceMesh> snapped;
+  snapped.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) snapped.push_back(to_surface_mesh(solids[i], planes));
+  exact::align_coincident_walls(snapped, solids, 1e-14 * diag);
   TriMesh out;
   for (std::size_t root = 0; root < n; ++root) {
     if (find(root) != root) continue;
@@ -292,7 +299,7 @@ Result<TriMesh> union_snapped_solids(const std::vector<SnappedSolid>& solids, co
     std::vector<std::size_t> ids;
     for (std::size_t i = root; i < n; ++i) {
       if (find(i) != root) continue;
-      level.push_back(to_surface_mesh(solids[i], planes));
+      level.push_back(std::move(snapped[i]));
       ids.push_back(i);
       if (level.back().is_empty() || !CGAL::is_valid_polygon_mesh(level.back()) || !CGAL::is_closed(level.back()) ||
           has_degenerate_face(level.back()))

@@ -224,7 +224,9 @@ TEST(ZoneUnion, RefusesASelfIntersectingPrimitive) {
 // - 73, 74: it crossed itself over flat slivers of the exact unions (seed 73: one cap 3.5e-17
 //   high on a 0.2-long edge; seed 74: a strip of five faces of area 1e-19 to 1e-21 along a
 //   crease) that rounding turned over; they are removed and the seam zipped
-//   (modeling/sliver_repair.h).
+//   (modeling/sliver_repair.h). Since walls that two frusta share up to rounding are made one
+//   before the union (modeling/coincident_walls.h), neither seed has those slivers any more:
+//   both must still reconstruct, with no particular repair named.
 // - 38: the same, where the seam's two sides then met at two vertices 1 ulp apart (each end of
 //   the removed strip); those are merged.
 // - 37: two exact points 1.6e-17 apart inside a closed part left a doubled face and an edge
@@ -257,9 +259,11 @@ TEST_P(RoundingRepairSeed, ReconstructsWithTheRepairNamed) {
   ps::ReconstructReport report;
   auto mesh = ps::reconstruct(sections, options, &report);
   ASSERT_TRUE(mesh) << "seed " << seed << ": " << mesh.message();
-  bool named = false;
-  for (const auto& w : report.warnings) named = named || w.find(GetParam().warning) != std::string::npos;
-  EXPECT_TRUE(named) << "seed " << seed << ": the repair was not needed (the case no longer tests it)";
+  if (GetParam().warning != nullptr) {
+    bool named = false;
+    for (const auto& w : report.warnings) named = named || w.find(GetParam().warning) != std::string::npos;
+    EXPECT_TRUE(named) << "seed " << seed << ": the repair was not needed (the case no longer tests it)";
+  }
   const auto g = ps::check_guarantees(*mesh);
   EXPECT_TRUE(g.valid()) << "seed " << seed << ": " << g.problem();
   const auto pts = sections.all_points();
@@ -267,7 +271,7 @@ TEST_P(RoundingRepairSeed, ReconstructsWithTheRepairNamed) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ObliqueStress, RoundingRepairSeed,
-                         ::testing::Values(RoundingRepair{73, "flat sliver"}, RoundingRepair{74, "flat sliver"},
+                         ::testing::Values(RoundingRepair{73, nullptr}, RoundingRepair{74, nullptr},
                                            RoundingRepair{38, "flat sliver"},
                                            RoundingRepair{37, "were merged"},
                                            RoundingRepair{13, "touch without overlapping"},
