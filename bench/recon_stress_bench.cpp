@@ -389,7 +389,8 @@ int main(int argc, char** argv) {
     if (!r.timed_out) wall_all.push_back(r.wall_s);
     // Issue 8's bound: no case over 10 s (listed whatever its outcome; the hang timeout is
     // separate and larger).
-    if (!r.timed_out && r.wall_s > 10.0)
+    const bool too_slow = !r.timed_out && r.wall_s > 10.0;
+    if (too_slow)
       slow.push_back("seed " + std::to_string(seed) + " (" + families[family] + ", " + variant + "): " + kind + ", " +
                      std::to_string(r.wall_s).substr(0, 5) + " s wall, " + std::to_string(r.cpu_s).substr(0, 5) + " s CPU");
     outcome[kind]++;
@@ -401,7 +402,7 @@ int main(int argc, char** argv) {
     // --keep-failures: the refusal rate is what the stress drives towards zero.
     const bool valid_refused = kind == "refused" && family != 2;
     if (valid_refused) refused_valid.push_back("seed " + std::to_string(seed) + " (" + families[family] + ", " + variant + "): " + detail);
-    if (!((keep || valid_refused) && a.keep_failures)) {
+    if (!((keep || valid_refused || too_slow) && a.keep_failures)) {
       fs::remove(in, ec);
       fs::remove(log_out, ec);
       fs::remove(log_err, ec);

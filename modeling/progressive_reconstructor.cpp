@@ -124,7 +124,6 @@ bool repair_stitched_surface(TriMesh& mesh, const MeshTopology& t, double diag, 
   }
   return changed;
 }
-constexpr double kSewTolerance = 0.02;
 
 // === Canonical order of planes and curves (order independence, thesis 4.1 requirement 3).
 SectionSet canonical_sections(const SectionSet& s) {

@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "modeling/mesh_slicer.h"
+#include "modeling/section_validate.h"
 
 namespace ps {
 namespace {
@@ -275,8 +276,21 @@ GeneratedSections generate_sections(const GeneratorOptions& options) {
     }
     if (curves.empty() || !polygons_are_simple(flat)) return false;
     const int id = static_cast<int>(out.sections.planes.size());
-    out.sections.planes.push_back(pl);
-    for (auto& c : curves) out.sections.curves.push_back(CrossSection{id, std::move(c)});
+    SectionSet trial = out.sections;
+    trial.planes.push_back(pl);
+    for (auto& c : curves) trial.curves.push_back(CrossSection{id, std::move(c)});
+    // Rule 4 across planes, as the reconstruction sews it: near a tangency one plane's small
+    // loop is dropped above (or cut by a chord) while another plane's curve still crosses the
+    // shared line there, and the sewing finds a crossing without a partner. Such a plane would
+    // make an input that breaks rule 4, so it is refused like a self-crossing one.
+    auto checked = validate_sections(trial);
+    if (!checked) return false;
+    SectionSet sewn = checked->sections;
+    std::vector<std::string> warnings;
+    sew_crossings(sewn, kSewTolerance * checked->diagonal, &warnings);
+    for (const auto& w : warnings)
+      if (w.find("(rule 4)") != std::string::npos) return false;
+    out.sections = std::move(trial);
     return true;
   };
 

@@ -16,6 +16,10 @@
 // their crossing points differ by up to about one point spacing times the curvature (a few
 // percent of a cell; cell = 1/8 of the smallest primitive radius). Reconstruction's curve
 // sewing absorbs this; inputs that need exact agreement should come from slice_mesh instead.
+// Near a tangency the disagreement can be larger (a loop of a few cells is dropped as noise on
+// one plane while another plane's curve crosses the shared line there): a plane whose curves
+// leave a crossing the sewing cannot pair (rule 4, section_validate.h) is refused and another
+// one drawn.
 //
 // Everything is deterministic by seed (SeededRandom, mesh_slicer.h).
 #include <cstdint>

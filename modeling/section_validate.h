@@ -73,5 +73,7 @@ int sew_crossings(SectionSet& sections, double tolerance, std::vector<std::strin
 inline constexpr double kOffPlaneError = 1e-3;
 inline constexpr double kOffPlaneWarn = 1e-6;
 inline constexpr double kDuplicatePoint = 1e-9;
+// Crossing points of curves on two planes closer than this become one (rule 4, sew_crossings).
+inline constexpr double kSewTolerance = 0.02;
 
 }  // namespace ps
