@@ -3,6 +3,7 @@
 #include "modeling/cylinder_builder.h"
 
 #include "modeling/face_intersections.h"
+#include "modeling/polyline_crossing.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -77,7 +78,9 @@ struct PieceCache {
   std::vector<Vec2> points;                   // concatenated loops
   std::vector<std::array<int, 2>> loop_range;  // [begin, end) per loop
   std::vector<std::array<int, 3>> tris;        // counter-clockwise in 2D
+  bool simple = false;  // loops simple and pairwise disjoint (exact 2D test), so a straight prism is valid
 };
+
 
 // The top's 2D points, with points on side faces that carry a section pulled into the zone
 // (thesis 4.3). Halves the pull (starting from `first_scale` of it) until no cap triangle flips
@@ -168,7 +171,7 @@ bool self_intersects(const TriMesh& m) { return !self_intersecting_pairs(m).empt
 // piece cannot intersect itself). Corefinement's contract needs valid operands; its
 // preconditions are compiled out.
 TriMesh checked_prism(const PieceCache& pc, const SectionPiece& piece, const Zone& zone, int k, double c0, double c1,
-                      const CylinderOptions& opt, const CylinderCache* previous, CylinderCache* next) {
+                      const CylinderOptions& opt, const CylinderCache* previous, CylinderCache* next, bool* verified) {
   for (const double first : {1.0, 0.25, 0.0625}) {
     const std::vector<Vec2> top = perturbed_top(pc, piece, zone, opt, first);
     if (top == pc.points) break;  // not pulled: the straight prism below
@@ -176,13 +179,36 @@ TriMesh checked_prism(const PieceCache& pc, const SectionPiece& piece, const Zon
     ContentHash hash;
     hash.mesh(key.prism);
     if (!cached(previous ? &previous->self_intersecting : nullptr, next ? &next->self_intersecting : nullptr, hash.h,
-                key, [&] { return self_intersects(key.prism); }))
+                key, [&] { return self_intersects(key.prism); })) {
+      *verified = true;
       return std::move(key.prism);
+    }
   }
+  *verified = pc.simple;
   return prism(pc, k, c0, c1, pc.points);
 }
 
 }  // namespace
+
+// (cylinder_builder.h) Whether a straight prism over the piece is free of self-intersections: every loop has at least
+// three points, no two consecutive points equal (a zero-length wall), and the loops neither
+// cross nor touch themselves or each other. Exact (orient2d with an exact fallback). Pieces with
+// more than kMaxPairwiseLoops loops are not tested pairwise and count as unproven: the union
+// then runs its own 3D test, as it does for every operand it is not told is valid.
+bool piece_is_simple(const SectionPiece& piece) {
+  constexpr std::size_t kMaxPairwiseLoops = 16;
+  if (piece.loops.empty() || piece.loops.size() > kMaxPairwiseLoops) return false;
+  for (const auto& loop : piece.loops) {
+    if (loop.size() < 3) return false;
+    for (std::size_t i = 0; i < loop.size(); ++i)
+      if (loop[i] == loop[(i + 1) % loop.size()]) return false;
+    if (first_self_crossing(loop)) return false;
+  }
+  for (std::size_t a = 0; a < piece.loops.size(); ++a)
+    for (std::size_t b = a + 1; b < piece.loops.size(); ++b)
+      if (first_crossing_between(piece.loops[a], piece.loops[b])) return false;
+  return true;
+}
 
 std::vector<std::array<int, 3>> triangulate_piece(const SectionPiece& piece) {
   CDT cdt;
@@ -220,6 +246,7 @@ std::vector<ZonePrimitives> build_cylinders(const Partition& part, const Cylinde
     for (const auto& loop : p.loops) hash.points(loop);
     pc.tris = cached(previous ? &previous->caps : nullptr, next ? &next->caps : nullptr, hash.h, p.loops,
                      [&] { return triangulate_piece(p); });
+    pc.simple = piece_is_simple(p);
   }
 
   std::vector<ZonePrimitives> out(part.zones.size());
@@ -236,8 +263,9 @@ std::vector<ZonePrimitives> build_cylinders(const Partition& part, const Cylinde
         if (z.type == ZoneType::kBody) {
           // === Body zone: Eq. 4.1 with the 4.3 perturbation.
           const double h = z.extent(k) * (1.0 - opt.height_margin);
-          out[zi].solids.push_back(checked_prism(pc, piece, z, k, c0, c0 + dir * h, opt, previous, next));
-          out[zi].info.push_back({pid, f, true, static_cast<int>(pc.points.size())});
+          bool verified = false;
+          out[zi].solids.push_back(checked_prism(pc, piece, z, k, c0, c0 + dir * h, opt, previous, next, &verified));
+          out[zi].info.push_back({pid, f, true, static_cast<int>(pc.points.size()), verified});
           continue;
         }
         // === End zone: stretch across empty zones (4.4), one segment per zone.
@@ -250,13 +278,14 @@ std::vector<ZonePrimitives> build_cylinders(const Partition& part, const Cylinde
           const bool last = zz.on_box[uz(far_face)] || (!first && zz.type != ZoneType::kEmpty);
           if (last) {
             const double h = zz.extent(k) * (1.0 - opt.height_margin);
-            out[id].solids.push_back(checked_prism(pc, piece, zz, k, bottom, bottom + dir * h, opt, previous, next));
-            out[id].info.push_back({pid, f, false, static_cast<int>(pc.points.size())});
+            bool verified = false;
+            out[id].solids.push_back(checked_prism(pc, piece, zz, k, bottom, bottom + dir * h, opt, previous, next, &verified));
+            out[id].info.push_back({pid, f, false, static_cast<int>(pc.points.size()), verified});
             break;
           }
           const double top = f % 2 == 0 ? zz.max[k] : zz.min[k];
           out[id].solids.push_back(prism(pc, k, bottom, top, pc.points));
-          out[id].info.push_back({pid, f, false, static_cast<int>(pc.points.size())});
+          out[id].info.push_back({pid, f, false, static_cast<int>(pc.points.size()), pc.simple});
           bottom = top;
           cell[uz(k)] += f % 2 == 0 ? 1 : -1;
         }

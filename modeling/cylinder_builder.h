@@ -42,6 +42,11 @@ struct PrimitiveInfo {
   int face = 0;
   bool body = false;  // a body zone's own prism (Eq. 4.1), not an extension segment
   int bottom_count = 0;
+  // The builder proved the prism free of self-intersections: a pulled prism passed the 3D test,
+  // or a straight prism stands over a piece whose loops were checked simple and pairwise
+  // disjoint in exact 2D arithmetic (rounded clipping can leave a piece that is not). The zone
+  // union then skips its own 3D test of that operand. Edits that move vertices clear it.
+  bool verified = false;
 };
 
 struct ZonePrimitives {
@@ -66,6 +71,12 @@ struct CylinderCache {
 
 // Primitives per zone (indexed like Partition::zones). Results found in `previous` are reused;
 // everything computed or reused goes to `next` (either may be null).
+// Whether a straight prism over `piece` is free of self-intersections, decided in exact 2D
+// arithmetic: every loop has at least three points and no zero-length edge, and no loop crosses
+// or touches itself or another loop. Pieces with more than 16 loops are not tested pairwise and
+// return false (unproven). build_cylinders sets PrimitiveInfo::verified from it.
+bool piece_is_simple(const SectionPiece& piece);
+
 std::vector<ZonePrimitives> build_cylinders(const Partition& partition, const CylinderOptions& options = {},
                                             const CylinderCache* previous = nullptr, CylinderCache* next = nullptr);
 

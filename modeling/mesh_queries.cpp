@@ -1,6 +1,8 @@
 // CGAL translation unit: self-intersection, AABB distance and Hausdorff queries.
 #include "modeling/mesh_queries.h"
 
+#include "modeling/face_intersections.h"
+
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -57,6 +59,23 @@ bool does_self_intersect(const TriMesh& mesh) {
 
 double max_distance_to_surface(const TriMesh& mesh, const std::vector<Vec3>& points) {
   if (points.empty() || mesh.faces.empty()) return points.empty() ? 0.0 : std::numeric_limits<double>::infinity();
+  // Points that are vertices of a face: distance 0, by binary search in the sorted vertices.
+  // (Non-finite coordinates would break the ordering: then every point takes the tree.)
+  std::vector<char> used(mesh.vertices.size(), 0);
+  for (const auto& f : mesh.faces)
+    for (int c : f) used[static_cast<std::size_t>(c)] = 1;
+  std::vector<Vec3> corners;
+  for (std::size_t v = 0; v < used.size(); ++v)
+    if (used[v]) corners.push_back(mesh.vertices[v]);
+  if (!std::all_of(corners.begin(), corners.end(), [](const Vec3& v) { return v.allFinite(); })) corners.clear();
+  auto less = [](const Vec3& a, const Vec3& b) {
+    return a.x() != b.x() ? a.x() < b.x() : a.y() != b.y() ? a.y() < b.y() : a.z() < b.z();
+  };
+  std::sort(corners.begin(), corners.end(), less);
+  std::vector<Vec3> rest;
+  for (const auto& p : points)
+    if (!p.allFinite() || !std::binary_search(corners.begin(), corners.end(), p, less)) rest.push_back(p);
+  if (rest.empty()) return 0.0;
   std::vector<Triangle> tris;
   tris.reserve(mesh.faces.size());
   for (const auto& f : mesh.faces) {
@@ -70,7 +89,7 @@ double max_distance_to_surface(const TriMesh& mesh, const std::vector<Vec3>& poi
   Tree tree(tris.cbegin(), tris.cend());
   tree.accelerate_distance_queries();
   double worst = 0.0;
-  for (const auto& p : points) {
+  for (const auto& p : rest) {
     const double d2 = CGAL::to_double(tree.squared_distance(Point(p.x(), p.y(), p.z())));
     worst = std::max(worst, std::sqrt(d2));
   }
@@ -94,7 +113,11 @@ double hausdorff_distance(const TriMesh& a, const TriMesh& b, int samples) {
 MeshGuarantees check_guarantees(const TriMesh& mesh) {
   MeshGuarantees g;
   g.topology = mesh_topology(mesh);
-  g.self_intersecting = g.topology.problem.find("out of range") != std::string::npos ? true : does_self_intersect(mesh);
+  // The project's own test (face_intersections.h): the same rules and exact predicates as CGAL's
+  // does_self_intersect (checked against it in improve_parts_test), about twice as fast on a
+  // 37k-face reconstruction, and it takes the soup as it is (no halfedge mesh to build).
+  g.self_intersecting =
+      g.topology.problem.find("out of range") != std::string::npos ? true : !self_intersecting_pairs(mesh).empty();
   return g;
 }
 

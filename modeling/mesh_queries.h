@@ -15,7 +15,9 @@ namespace ps {
 // Requires a valid index structure; works on any triangle soup.
 bool does_self_intersect(const TriMesh& mesh);
 
-// Largest distance from any of `points` to the surface (AABB tree). 0 for no points.
+// Largest distance from any of `points` to the surface. 0 for no points. A point equal to a
+// vertex of some face is at distance 0 exactly (found by lookup: reconstructions keep every curve
+// point as a vertex); only the others go through an AABB tree of the faces.
 double max_distance_to_surface(const TriMesh& mesh, const std::vector<Vec3>& points);
 
 // Symmetric Hausdorff distance approximated by sampling both surfaces

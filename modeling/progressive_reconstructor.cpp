@@ -571,16 +571,23 @@ Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSectio
     }
     // An intermediate union can be non-manifold (two primitives touching along an edge)
     // even when the whole union is not; retry in other fixed orders (deterministic).
-    auto u = union_solids(prims[z].solids);
+    std::vector<bool> verified(prims[z].solids.size(), false);
+    if (prims[z].info.size() == verified.size())
+      for (std::size_t p = 0; p < verified.size(); ++p) verified[p] = prims[z].info[p].verified;
+    auto u = union_solids(prims[z].solids, verified);
     const std::size_t count = prims[z].solids.size();
     // At most two retries (one rotation, then reversed): a refusal must stay quick.
     for (std::size_t rot = 1; !u && rot <= 2 && count > 2; ++rot) {
       std::vector<TriMesh> order(prims[z].solids);
-      if (rot == 1)
+      std::vector<bool> order_verified(verified);
+      if (rot == 1) {
         std::rotate(order.begin(), order.begin() + 1, order.end());
-      else
+        std::rotate(order_verified.begin(), order_verified.begin() + 1, order_verified.end());
+      } else {
         std::reverse(order.begin(), order.end());
-      u = union_solids(order);
+        std::reverse(order_verified.begin(), order_verified.end());
+      }
+      u = union_solids(order, order_verified);
     }
     if (u) {
       solids[z] = std::move(*u);

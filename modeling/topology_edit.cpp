@@ -252,6 +252,7 @@ Status join(const Partition& part, std::vector<ZonePrimitives>& prims, const Top
       shear_top(final_mesh, ia, (static_cast<double>(s) / kSteps) * d);
       if (!top_inside(final_mesh, ia, z)) continue;
       zp.solids[uz(a.second)] = std::move(final_mesh);
+      zp.info[uz(a.second)].verified = false;  // moved: the union tests it again
       return Status::ok();
     }
   }
@@ -310,7 +311,10 @@ Status split(const Partition& part, std::vector<ZonePrimitives>& prims, const To
     for (std::size_t i = 0; i < shrunk.size() && apart; ++i)
       for (std::size_t j = i + 1; j < shrunk.size() && apart; ++j) apart = !overlap(shrunk[i], shrunk[j]);
     if (!apart) continue;
-    for (const auto& [zi, pi] : change) shrink_top(prims[uz(zi)].solids[uz(pi)], prims[uz(zi)].info[uz(pi)], s);
+    for (const auto& [zi, pi] : change) {
+      shrink_top(prims[uz(zi)].solids[uz(pi)], prims[uz(zi)].info[uz(pi)], s);
+      prims[uz(zi)].info[uz(pi)].verified = false;  // moved: the union tests it again
+    }
     return Status::ok();
   }
   return Status::error("split: the frusta do not separate even when shrunk to a tenth of their height");

@@ -17,6 +17,12 @@ namespace ps {
 // unchanged; none gives an empty mesh.
 Result<TriMesh> union_solids(const std::vector<TriMesh>& solids);
 
+// The same, where verified[i] says the caller has proved solid i free of self-intersections
+// (cylinder_builder.h, PrimitiveInfo::verified): its 3D self-intersection test is skipped. The
+// other operand checks (closed, oriented 2-manifold, positive volume) still run. A `verified`
+// of another size than `solids` counts as all false.
+Result<TriMesh> union_solids(const std::vector<TriMesh>& solids, const std::vector<bool>& verified);
+
 // A solid whose vertices must lie exactly on given planes (chapter 6: section planes of any
 // orientation cannot hold double points exactly). tags[v] lists up to three plane indices
 // (-1 unused); the exact vertex is the point nearest to mesh.vertices[v] on the intersection
