@@ -122,7 +122,8 @@ int run(const Options& o) {
   j["max_curve_distance_relative"] = diag > 0.0 ? curve_dist / diag : 0.0;
   j["sections"] = sections->curves.size();
   j["planes"] = sections->planes.size();
-  j["zones"] = {{"total", rr.zones}, {"empty", rr.empty_zones}, {"end", rr.end_zones}, {"body", rr.body_zones}};
+  j["zones"] = {{"total", rr.zones}, {"empty", rr.empty_zones}, {"end", rr.end_zones}, {"body", rr.body_zones},
+                {"union_by_box", rr.zones_filled}, {"union_in_2d", rr.zones_stacked}};
   j["primitives"] = rr.primitives;
   j["topology_edits"] = edits.size();
   // read (and --repair), the reconstructor's stages and total, then the command's own checks of

@@ -3,12 +3,8 @@
 #include "modeling/cylinder_builder.h"
 
 #include "modeling/face_intersections.h"
+#include "modeling/cdt_domains.h"
 #include "modeling/polyline_crossing.h"
-
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_face_base_with_info_2.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
 #include <list>
@@ -16,63 +12,16 @@
 namespace ps {
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-struct FaceInfo {
-  int nesting = -1;
-};
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
-using Fbb = CGAL::Triangulation_face_base_with_info_2<FaceInfo, K>;
-using Fb = CGAL::Constrained_triangulation_face_base_2<K, Fbb>;
-using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
+using cdt::CDT;
+using cdt::mark_domains;
 
 std::size_t uz(int i) { return static_cast<std::size_t>(i); }
-
-// Nesting level of every face by flood fill from the infinite face, crossing a constraint
-// increments the level; odd levels are inside the piece.
-void mark_domains(CDT& cdt) {
-  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info().nesting = -1;
-  std::list<CDT::Edge> border;
-  auto fill = [&](CDT::Face_handle start, int level) {
-    std::list<CDT::Face_handle> queue{start};
-    while (!queue.empty()) {
-      CDT::Face_handle fh = queue.front();
-      queue.pop_front();
-      if (fh->info().nesting != -1) continue;
-      fh->info().nesting = level;
-      for (int i = 0; i < 3; ++i) {
-        CDT::Edge e(fh, i);
-        CDT::Face_handle n = fh->neighbor(i);
-        if (n->info().nesting == -1) {
-          if (cdt.is_constrained(e))
-            border.push_back(e);
-          else
-            queue.push_back(n);
-        }
-      }
-    }
-  };
-  fill(cdt.infinite_face(), 0);
-  while (!border.empty()) {
-    CDT::Edge e = border.front();
-    border.pop_front();
-    CDT::Face_handle n = e.first->neighbor(e.second);
-    if (n->info().nesting == -1) fill(n, e.first->info().nesting + 1);
-  }
-}
 
 double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
   return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
 }
 
-// Axis coordinate -> 3D point on an axis plane frame (axis k, in-plane coordinates q).
-Vec3 lift(int k, double coord, const Vec2& q) {
-  Vec3 p;
-  p[k] = coord;
-  p[(k + 1) % 3] = q.x();
-  p[(k + 2) % 3] = q.y();
-  return p;
-}
+Vec3 lift(int k, double coord, const Vec2& q) { return axis_frame_point(k, coord, q); }
 
 struct PieceCache {
   std::vector<Vec2> points;                   // concatenated loops
@@ -189,6 +138,14 @@ TriMesh checked_prism(const PieceCache& pc, const SectionPiece& piece, const Zon
 }
 
 }  // namespace
+
+Vec3 axis_frame_point(int k, double coord, const Vec2& q) {
+  Vec3 p;
+  p[k] = coord;
+  p[(k + 1) % 3] = q.x();
+  p[(k + 2) % 3] = q.y();
+  return p;
+}
 
 // (cylinder_builder.h) Whether a straight prism over the piece is free of self-intersections: every loop has at least
 // three points, no two consecutive points equal (a zero-length wall), and the loops neither

@@ -71,6 +71,10 @@ struct CylinderCache {
 
 // Primitives per zone (indexed like Partition::zones). Results found in `previous` are reused;
 // everything computed or reused goes to `next` (either may be null).
+// The 3D point of an axis plane x_k = coord with in-plane coordinates q (u = axis (k+1)%3,
+// v = axis (k+2)%3, so e_u x e_v = e_k): the frame of SectionPiece loops.
+Vec3 axis_frame_point(int k, double coord, const Vec2& q);
+
 // Whether a straight prism over `piece` is free of self-intersections, decided in exact 2D
 // arithmetic: every loop has at least three points and no zero-length edge, and no loop crosses
 // or touches itself or another loop. Pieces with more than 16 loops are not tested pairwise and

@@ -32,6 +32,7 @@
 #include "modeling/zone_partition.h"
 #include "modeling/zone_stitch.h"
 #include "modeling/zone_box_union.h"
+#include "modeling/zone_stacked_union.h"
 #include "modeling/zone_union.h"
 
 namespace ps {
@@ -558,7 +559,7 @@ Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSectio
     if (!hit) todo.push_back(static_cast<int>(z));
   }
   std::vector<std::string> errors(todo.size());
-  std::atomic<int> done{0}, filled_zones{0};
+  std::atomic<int> done{0}, filled_zones{0}, stacked_zones{0};
   parallel_over(todo.size(), options_.threads, [&](std::size_t i) {
     const std::size_t z = uz(todo[i]);
     // A zone its six whole-face prisms fill is its box (zone_box_union.h): no exact union.
@@ -566,6 +567,15 @@ Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSectio
       solids[z] = std::move(*filled);
       canonicalize(solids[z]);
       ++filled_zones;
+      ++done;
+      return;
+    }
+    // Straight prisms stacked along one axis (parallel sections): a 2D arrangement instead of
+    // the 3D corefinement (zone_stacked_union.h).
+    if (auto stacked = stacked_zone_union(*part, part->zones[z], prims[z])) {
+      solids[z] = std::move(*stacked);
+      canonicalize(solids[z]);
+      ++stacked_zones;
       ++done;
       return;
     }
@@ -601,6 +611,7 @@ Result<TriMesh> ProgressiveReconstructor::reconstruct_grid(const ValidatedSectio
     if (!e.empty()) return Result<TriMesh>::error("reconstruction failed: " + e);
   rep.zones_recomputed = static_cast<int>(todo.size());
   rep.zones_filled = filled_zones.load();
+  rep.zones_stacked = stacked_zones.load();
   rep.timings.union_ms = ms_since(t);
   progress("union", 1.0);
 

@@ -40,6 +40,7 @@ struct ReconstructReport {
   int primitives = 0;
   int zones_recomputed = 0;  // zones whose union was computed (not taken from the cache)
   int zones_filled = 0;      // of those, zones filled by six whole-face prisms: their box (zone_box_union.h)
+  int zones_stacked = 0;     // of those, straight prisms along one axis united in 2D (zone_stacked_union.h)
   int components = 0;
   bool improved = false;
   StageTimings timings;
