@@ -450,6 +450,11 @@ Result<TriMesh> mesh_boolean(const TriMesh& a, const TriMesh& b, BooleanOp op, b
     if (!merge_rounded_neighbours(m, a, b))
       return Result<TriMesh>::error("Boolean operation refused: the rounded result intersects itself");
   }
+  // CGAL numbers the new vertices in the order it met the intersections, which follows heap
+  // addresses (its box intersection breaks ties by box address): the same Boolean gave the same
+  // triangles with other vertex numbers when other threads had used the heap (the tunnel replay
+  // of tests/app_sculpt_ops_replay_test.sh under load). Canonical order makes it bit-identical.
+  canonicalize(m);
   // Free of self-intersections (the faces kept from `a` among themselves, every other face
   // against all): what check_solid asks, once the topology agrees.
   remember_checked_solid(m);
