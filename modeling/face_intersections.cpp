@@ -3,6 +3,8 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Intersections_3/Segment_3_Triangle_3.h>
+#include <CGAL/Intersections_2/Segment_2_Triangle_2.h>
+#include <CGAL/Intersections_2/Triangle_2_Triangle_2.h>
 #include <CGAL/Intersections_3/Triangle_3_Triangle_3.h>
 #include <CGAL/box_intersection_d.h>
 
@@ -23,6 +25,48 @@ using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
 std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 
 Point to_point(const Vec3& v) { return Point(v.x(), v.y(), v.z()); }
+
+// === Faces in a plane known exactly. Reconstructions from axis sections are mostly flat pieces
+// of axis planes (caps, stitched zone faces) and walls parallel to an axis (prism walls, whose
+// corners share their in-plane position two by two). There every neighbour pair is coplanar and
+// CGAL's 3D predicates fall back to exact arithmetic (Mpzf) to find out. Two cases are known
+// without arithmetic: all points share one coordinate (an axis plane), or their positions with
+// one coordinate c dropped take only two distinct values (a plane containing e_c). Dropping a
+// suitable coordinate then maps that plane onto 2D bijectively and affinely, so the 2D
+// predicates (filtered, exact) give the same answers, at the cost of doubles.
+using Point2 = K::Point_2;
+
+// The coordinate whose dropping maps the plane of all `n` points onto 2D bijectively when that
+// plane is known as above, or -1.
+int flat_drop(const Point* const* pts, int n) {
+  for (int c = 0; c < 3; ++c) {
+    bool same = true;
+    for (int i = 1; i < n && same; ++i) same = pts[i]->cartesian(c) == pts[0]->cartesian(c);
+    if (same) return c;
+  }
+  for (int c = 0; c < 3; ++c) {
+    const int a = (c + 1) % 3, b = (c + 2) % 3;
+    const Point* other = nullptr;
+    bool two = true;
+    for (int i = 1; i < n && two; ++i) {
+      if (pts[i]->cartesian(a) == pts[0]->cartesian(a) && pts[i]->cartesian(b) == pts[0]->cartesian(b)) continue;
+      if (!other) {
+        other = pts[i];
+        continue;
+      }
+      two = pts[i]->cartesian(a) == other->cartesian(a) && pts[i]->cartesian(b) == other->cartesian(b);
+    }
+    if (!two || !other) continue;
+    // The plane holds e_c and the direction between the two positions: keep c and a coordinate
+    // that direction moves along.
+    return other->cartesian(a) != pts[0]->cartesian(a) ? b : a;
+  }
+  return -1;
+}
+
+Point2 drop(const Point& p, int c) {
+  return c == 0 ? Point2(p.y(), p.z()) : c == 1 ? Point2(p.z(), p.x()) : Point2(p.x(), p.y());
+}
 
 // True when faces f and g (distinct) intersect beyond what they share combinatorially.
 bool faces_intersect(const std::vector<Vec3>& pts, const Face& f, const Face& g, bool df, bool dg) {
@@ -54,6 +98,13 @@ bool faces_intersect(const std::vector<Vec3>& pts, const Face& f, const Face& g,
     }
     const Point& a = p[(fo + 1) % 3];
     const Point& b = p[(fo + 2) % 3];
+    const Point* four[4] = {&a, &b, &p[fo], &q[go]};
+    if (const int c = flat_drop(four, 4); c >= 0) {
+      const Point2 a2 = drop(a, c), b2 = drop(b, c);
+      const CGAL::Orientation of = CGAL::orientation(a2, b2, drop(p[fo], c));
+      const CGAL::Orientation og = CGAL::orientation(a2, b2, drop(q[go], c));
+      if (of != CGAL::COLLINEAR && og != CGAL::COLLINEAR) return of == og;  // folded onto each other
+    }
     return CGAL::coplanar(a, b, p[fo], q[go]) &&
            CGAL::coplanar_orientation(a, b, p[fo], q[go]) == CGAL::POSITIVE;
   }
@@ -71,6 +122,21 @@ bool faces_intersect(const std::vector<Vec3>& pts, const Face& f, const Face& g,
       if (s0 != s1 && CGAL::do_intersect(tri, K::Segment_3(s0, s1))) return true;
     }
     return false;
+  }
+  {
+    const Point* six[6] = {&p[0], &p[1], &p[2], &q[0], &q[1], &q[2]};
+    if (const int c = flat_drop(six, 6); c >= 0) {
+      const Point2 f2[3] = {drop(p[0], c), drop(p[1], c), drop(p[2], c)};
+      const Point2 g2[3] = {drop(q[0], c), drop(q[1], c), drop(q[2], c)};
+      if (CGAL::orientation(f2[0], f2[1], f2[2]) != CGAL::COLLINEAR &&
+          CGAL::orientation(g2[0], g2[1], g2[2]) != CGAL::COLLINEAR) {
+        const K::Triangle_2 tf2(f2[0], f2[1], f2[2]), tg2(g2[0], g2[1], g2[2]);
+        if (shared == 1)  // as below: each face against the other's edge opposite the shared vertex
+          return CGAL::do_intersect(tf2, K::Segment_2(g2[(gi + 1) % 3], g2[(gi + 2) % 3])) ||
+                 CGAL::do_intersect(tg2, K::Segment_2(f2[(fi + 1) % 3], f2[(fi + 2) % 3]));
+        return CGAL::do_intersect(tf2, tg2);
+      }
+    }
   }
   // Quick rejection with the (filtered, exact) orientation predicate: points strictly on one
   // side of the other face's plane cannot meet it. Most candidate pairs are neighbours that

@@ -382,3 +382,89 @@ TEST(FaceIntersections, AgreeWithCgalOnNoisyMeshes) {
   EXPECT_GT(intersecting, 0);
   EXPECT_LT(intersecting, 12);
 }
+
+// Agreement with CGAL's global test on flat meshes lying in an axis plane (the 2D shortcut of
+// face_intersections.cpp): a triangulated grid in x_c = 0.3, some vertices moved within the
+// plane far enough to fold faces over their neighbours, for each axis c.
+TEST(FaceIntersections, AgreeWithCgalOnFlatMeshesInAxisPlanes) {
+  constexpr int n = 8;
+  int intersecting = 0, clean = 0;
+  for (int c = 0; c < 3; ++c)
+    for (unsigned seed = 1; seed <= 10; ++seed) {
+      TriMesh m;
+      auto at = [&](double u, double v) {
+        Vec3 p;
+        p[c] = 0.3;
+        p[(c + 1) % 3] = u;
+        p[(c + 2) % 3] = v;
+        return p;
+      };
+      for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) m.vertices.push_back(at(0.1 * i, 0.1 * j));
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const int v = j * (n + 1) + i;
+          if ((i + j + static_cast<int>(seed)) % 2 == 0) {
+            m.faces.push_back({v, v + 1, v + n + 2});
+            m.faces.push_back({v, v + n + 2, v + n + 1});
+          } else {
+            m.faces.push_back({v, v + 1, v + n + 1});
+            m.faces.push_back({v + 1, v + n + 2, v + n + 1});
+          }
+        }
+      std::mt19937 rng(seed);
+      std::normal_distribution<double> noise(0.0, 0.012 * seed);
+      std::uniform_int_distribution<int> pick(0, static_cast<int>(m.vertices.size()) - 1);
+      for (int k = 0; k < 6; ++k) {
+        Vec3& v = m.vertices[idx(pick(rng))];
+        v[(c + 1) % 3] += noise(rng);
+        v[(c + 2) % 3] += noise(rng);
+      }
+      std::vector<int> all(m.faces.size());
+      for (std::size_t f = 0; f < all.size(); ++f) all[f] = static_cast<int>(f);
+      const bool ours = !intersecting_face_pairs(m.vertices, m.faces, all).empty();
+      EXPECT_EQ(ours, does_self_intersect(m)) << "axis " << c << " seed " << seed;
+      (ours ? intersecting : clean) += 1;
+    }
+  EXPECT_GT(intersecting, 3);
+  EXPECT_GT(clean, 3);
+}
+
+// The same for strips of walls parallel to an axis (a prism's wall between two section points,
+// split at several heights, as zone unions leave them): corners at two in-plane positions only.
+// Heights are moved so that some faces fold over their neighbours.
+TEST(FaceIntersections, AgreeWithCgalOnWallStripsParallelToAnAxis) {
+  int intersecting = 0, clean = 0;
+  for (int c = 0; c < 3; ++c)
+    for (unsigned seed = 1; seed <= 12; ++seed) {
+      const int a = (c + 1) % 3, b = (c + 2) % 3;
+      Vec3 p0 = Vec3::Zero(), p1 = Vec3::Zero();
+      p0[a] = 0.1;
+      p0[b] = 0.2;
+      p1[a] = seed % 3 == 0 ? 0.1 : 0.7;  // every third strip runs along b only
+      p1[b] = 0.45;
+      TriMesh m;
+      constexpr int n = 8;
+      std::mt19937 rng(seed);
+      std::normal_distribution<double> noise(0.0, 0.02 * seed);
+      for (int i = 0; i <= n; ++i) {
+        Vec3 u = p0, v = p1;
+        u[c] = 0.1 * i + (i % 4 == 1 ? noise(rng) : 0.0);
+        v[c] = 0.1 * i + 0.03 + (i % 3 == 2 ? noise(rng) : 0.0);
+        m.vertices.push_back(u);
+        m.vertices.push_back(v);
+      }
+      for (int i = 0; i < n; ++i) {
+        const int u0 = 2 * i, v0 = 2 * i + 1, u1 = 2 * i + 2, v1 = 2 * i + 3;
+        m.faces.push_back({u0, v0, v1});
+        m.faces.push_back({u0, v1, u1});
+      }
+      std::vector<int> all(m.faces.size());
+      for (std::size_t f = 0; f < all.size(); ++f) all[f] = static_cast<int>(f);
+      const bool ours = !intersecting_face_pairs(m.vertices, m.faces, all).empty();
+      EXPECT_EQ(ours, does_self_intersect(m)) << "axis " << c << " seed " << seed;
+      (ours ? intersecting : clean) += 1;
+    }
+  EXPECT_GT(intersecting, 3);
+  EXPECT_GT(clean, 3);
+}
