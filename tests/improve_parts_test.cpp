@@ -383,6 +383,15 @@ TEST(FaceIntersections, AgreeWithCgalOnNoisyMeshes) {
   EXPECT_LT(intersecting, 12);
 }
 
+// Our test on all faces against CGAL's global one; counts the meshes found intersecting or not.
+void compare_with_cgal(const TriMesh& m, const std::string& what, int& intersecting, int& clean) {
+  std::vector<int> all(m.faces.size());
+  for (std::size_t f = 0; f < all.size(); ++f) all[f] = static_cast<int>(f);
+  const bool ours = !intersecting_face_pairs(m.vertices, m.faces, all).empty();
+  EXPECT_EQ(ours, does_self_intersect(m)) << what;
+  (ours ? intersecting : clean) += 1;
+}
+
 // Agreement with CGAL's global test on flat meshes lying in an axis plane (the 2D shortcut of
 // face_intersections.cpp): a triangulated grid in x_c = 0.3, some vertices moved within the
 // plane far enough to fold faces over their neighbours, for each axis c.
@@ -420,11 +429,7 @@ TEST(FaceIntersections, AgreeWithCgalOnFlatMeshesInAxisPlanes) {
         v[(c + 1) % 3] += noise(rng);
         v[(c + 2) % 3] += noise(rng);
       }
-      std::vector<int> all(m.faces.size());
-      for (std::size_t f = 0; f < all.size(); ++f) all[f] = static_cast<int>(f);
-      const bool ours = !intersecting_face_pairs(m.vertices, m.faces, all).empty();
-      EXPECT_EQ(ours, does_self_intersect(m)) << "axis " << c << " seed " << seed;
-      (ours ? intersecting : clean) += 1;
+      compare_with_cgal(m, "axis " + std::to_string(c) + " seed " + std::to_string(seed), intersecting, clean);
     }
   EXPECT_GT(intersecting, 3);
   EXPECT_GT(clean, 3);
@@ -459,11 +464,7 @@ TEST(FaceIntersections, AgreeWithCgalOnWallStripsParallelToAnAxis) {
         m.faces.push_back({u0, v0, v1});
         m.faces.push_back({u0, v1, u1});
       }
-      std::vector<int> all(m.faces.size());
-      for (std::size_t f = 0; f < all.size(); ++f) all[f] = static_cast<int>(f);
-      const bool ours = !intersecting_face_pairs(m.vertices, m.faces, all).empty();
-      EXPECT_EQ(ours, does_self_intersect(m)) << "axis " << c << " seed " << seed;
-      (ours ? intersecting : clean) += 1;
+      compare_with_cgal(m, "axis " + std::to_string(c) + " seed " + std::to_string(seed), intersecting, clean);
     }
   EXPECT_GT(intersecting, 3);
   EXPECT_GT(clean, 3);
