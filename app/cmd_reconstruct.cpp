@@ -130,7 +130,9 @@ int run(const Options& o) {
   // the result (topology, self-intersection, curve distance) and the mesh file write.
   j["timings_ms"] = {{"read", read_ms}, {"checks", checks_ms}, {"write", write_ms}, {"validate", rr.timings.validate_ms}, {"partition", rr.timings.partition_ms},
                      {"primitives", rr.timings.primitives_ms}, {"union", rr.timings.union_ms},
-                     {"improve", rr.timings.improve_ms}, {"reconstruct_total", rr.timings.total_ms},
+                     {"improve", rr.timings.improve_ms}, {"improve_refine", rr.timings.improve_refine_ms},
+                     {"improve_smooth", rr.timings.improve_smooth_ms}, {"improve_check", rr.timings.improve_check_ms},
+                     {"reconstruct_total", rr.timings.total_ms},
                      {"command_total", total_ms}};
   std::vector<std::string> all_warnings = warnings;
   all_warnings.insert(all_warnings.end(), rr.warnings.begin(), rr.warnings.end());

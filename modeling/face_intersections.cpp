@@ -191,58 +191,254 @@ double fast_angle(double y, double x) {
 // projection is one-to-one on each face, so two faces of the fan meet only in their shared
 // vertex or edge: their exact test can be skipped. The margins keep the double computation far
 // from any sign decision; a vertex that fails simply has its pairs tested exactly.
-std::vector<std::uint8_t> embedded_fans(const std::vector<Vec3>& pts, const std::vector<Face>& faces) {
-  const std::size_t nv = pts.size();
-  std::vector<Vec3> normal(nv, Vec3::Zero());
-  std::vector<Vec3> face_n(faces.size());
-  std::vector<std::uint8_t> bad(nv, 0);
-  for (std::size_t f = 0; f < faces.size(); ++f) {
-    const Face& fc = faces[f];
-    const Vec3 e1 = pts[idx(fc[1])] - pts[idx(fc[0])], e2 = pts[idx(fc[2])] - pts[idx(fc[0])];
-    face_n[f] = e1.cross(e2);
-    for (int v : fc) normal[idx(v)] += face_n[f];
-    // The computed normal is trusted only when the face is far from degenerate (sine of its
-    // angle at corner 0 above 1e-4) and its edges are long compared with the rounding of its
-    // coordinates; otherwise its vertices' pairs are tested exactly.
-    const double coord = std::max({pts[idx(fc[0])].cwiseAbs().maxCoeff(), pts[idx(fc[1])].cwiseAbs().maxCoeff(),
-                                   pts[idx(fc[2])].cwiseAbs().maxCoeff()});
-    const double l1 = e1.norm(), l2 = e2.norm(), l3 = (e2 - e1).norm();
-    if (!(face_n[f].norm() > 1e-4 * l1 * l2) || !(std::min({l1, l2, l3}) > 1e-9 * coord))
-      for (int v : fc) bad[idx(v)] = 1;
+// Only vertices of the faces in `query` (all faces when it is null) are decided; the others
+// come back 0. A pair that shares a vertex always has a queried face, so that is all callers need,
+// and the rollback passes of mesh improvement query a few faces of a large mesh.
+std::vector<std::uint8_t> embedded_fans(const std::vector<Vec3>& pts, const std::vector<Face>& faces,
+                                        const std::vector<int>* query) {
+  const std::size_t nv = pts.size(), nf = faces.size();
+  constexpr std::size_t kMinParallel = 4096;
+  std::vector<std::uint8_t> needed(nv, query ? 0 : 1), face_needed(nf, query ? 0 : 1);
+  if (query) {
+    for (int f : *query)
+      for (int v : faces[idx(f)]) needed[idx(v)] = 1;
+    for (std::size_t f = 0; f < nf; ++f)
+      face_needed[f] = needed[idx(faces[f][0])] || needed[idx(faces[f][1])] || needed[idx(faces[f][2])];
   }
-  std::vector<double> turn(nv, 0.0);
-  for (std::size_t f = 0; f < faces.size(); ++f) {
-    const Face& fc = faces[f];
-    for (int k = 0; k < 3; ++k) {
-      const std::size_t v = idx(fc[idx(k)]);
-      if (bad[v]) continue;
-      const Vec3& n = normal[v];
-      const double nn = n.norm();
-      if (!(face_n[f].dot(n) > 0.2 * face_n[f].norm() * nn)) {
-        bad[v] = 1;
-        continue;
-      }
-      const Vec3 u = n / nn;
-      Vec3 e1 = pts[idx(fc[idx((k + 1) % 3)])] - pts[v];
-      Vec3 e2 = pts[idx(fc[idx((k + 2) % 3)])] - pts[v];
-      e1 -= e1.dot(u) * u;
-      e2 -= e2.dot(u) * u;
-      turn[v] += fast_angle(e1.cross(e2).norm(), e1.dot(e2));
+  // Face normals, and which faces are too degenerate to trust: the computed normal is trusted
+  // only when the face is far from degenerate (sine of its angle at corner 0 above 1e-4) and its
+  // edges are long compared with the rounding of its coordinates; otherwise its vertices' pairs
+  // are tested exactly.
+  std::vector<Vec3> face_n(nf);
+  std::vector<std::uint8_t> untrusted(nf, 0);
+  parallel_ranges(nf, kMinParallel, [&](std::size_t b, std::size_t e) {
+    for (std::size_t f = b; f < e; ++f) {
+      if (!face_needed[f]) continue;
+      const Face& fc = faces[f];
+      const Vec3 e1 = pts[idx(fc[1])] - pts[idx(fc[0])], e2 = pts[idx(fc[2])] - pts[idx(fc[0])];
+      face_n[f] = e1.cross(e2);
+      const double coord = std::max({pts[idx(fc[0])].cwiseAbs().maxCoeff(), pts[idx(fc[1])].cwiseAbs().maxCoeff(),
+                                     pts[idx(fc[2])].cwiseAbs().maxCoeff()});
+      const double l1 = e1.norm(), l2 = e2.norm(), l3 = (e2 - e1).norm();
+      untrusted[f] = !(face_n[f].norm() > 1e-4 * l1 * l2) || !(std::min({l1, l2, l3}) > 1e-9 * coord);
     }
+  });
+  // Faces around each vertex, in increasing face order (corner k of face f as 3f + k).
+  std::vector<std::size_t> start(nv + 1, 0);
+  for (const Face& fc : faces)
+    for (int v : fc)
+      if (needed[idx(v)]) ++start[idx(v) + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<std::size_t> corner(start[nv]);
+  {
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t f = 0; f < nf; ++f)
+      for (std::size_t k = 0; k < 3; ++k)
+        if (needed[idx(faces[f][k])]) corner[fill[idx(faces[f][k])]++] = 3 * f + k;
   }
   std::vector<std::uint8_t> good(nv, 0);
-  for (std::size_t v = 0; v < nv; ++v) good[v] = !bad[v] && turn[v] > 1.5 * std::numbers::pi && turn[v] < 2.5 * std::numbers::pi;
+  parallel_ranges(nv, kMinParallel, [&](std::size_t vb, std::size_t ve) {
+    for (std::size_t v = vb; v < ve; ++v) {
+      if (!needed[v]) continue;
+      Vec3 n = Vec3::Zero();
+      bool bad = false;
+      for (std::size_t i = start[v]; i < start[v + 1]; ++i) {
+        n += face_n[corner[i] / 3];
+        bad = bad || untrusted[corner[i] / 3];
+      }
+      if (bad) continue;
+      const double nn = n.norm();
+      const Vec3 u = n / nn;
+      double turn = 0;
+      for (std::size_t i = start[v]; i < start[v + 1] && !bad; ++i) {
+        const std::size_t f = corner[i] / 3, k = corner[i] % 3;
+        if (!(face_n[f].dot(n) > 0.2 * face_n[f].norm() * nn)) {
+          bad = true;
+          break;
+        }
+        const Face& fc = faces[f];
+        Vec3 e1 = pts[idx(fc[(k + 1) % 3])] - pts[v];
+        Vec3 e2 = pts[idx(fc[(k + 2) % 3])] - pts[v];
+        e1 -= e1.dot(u) * u;
+        e2 -= e2.dot(u) * u;
+        turn += fast_angle(e1.cross(e2).norm(), e1.dot(e2));
+      }
+      good[v] = !bad && turn > 1.5 * std::numbers::pi && turn < 2.5 * std::numbers::pi;
+    }
+  });
   return good;
 }
 
+
+// === Broad phase on a uniform grid
+// Why not only CGAL::box_intersection_d: it is sequential, and on the refined meshes of mesh
+// improvement its sorting and scanning were 38% of the whole improvement (perf, hand_ok, one
+// thread); a query of a third of the faces took longer than a scan of all of them. The faces
+// there are much alike in size, which a uniform grid suits. The queried faces are entered in the
+// cells their boxes overlap (sorted by cell); pairs of queried faces are found within each cell,
+// and every other face looks up the cells its box overlaps. A pair of overlapping boxes is
+// reported only from the cell holding the lowest corner of their intersection, which both boxes
+// overlap, so each pair exactly once and no hash set is needed. Both loops run in parallel. The
+// grid declines (returns false, nothing visited) when its cost estimate is poor: boxes spanning
+// many cells, or crowded cells (a fine patch in a coarse mesh); the caller then uses CGAL's
+// box intersection. The pairs are the same either way.
+struct GridEntry {
+  std::uint64_t cell;
+  int face;
+  bool operator<(const GridEntry& o) const { return cell != o.cell ? cell < o.cell : face < o.face; }
+};
+
+bool boxes_overlap(const CGAL::Bbox_3& a, const CGAL::Bbox_3& b) {
+  return a.xmin() <= b.xmax() && b.xmin() <= a.xmax() && a.ymin() <= b.ymax() && b.ymin() <= a.ymax() &&
+         a.zmin() <= b.zmax() && b.zmin() <= a.zmax();
+}
+
+class FaceGrid {
+ public:
+  // Every pair {f, g} (f < g, at least one of them queried) whose boxes overlap (closed), once:
+  // `visit(f, g, chunk)`, called concurrently for different chunks in [0, chunks).
+  template <class Visit>
+  static bool for_each_pair(const std::vector<CGAL::Bbox_3>& boxes, const std::vector<std::uint8_t>& queried,
+                            const std::vector<int>& query, std::size_t chunks, const Visit& visit) {
+    const std::size_t n = boxes.size(), q = query.size();
+    if (n < 2000) return false;  // CGAL's scan is as fast at this size
+    FaceGrid grid(boxes);
+    if (!grid.ok_) return false;
+    // Queried faces into cells.
+    std::size_t total = 0;
+    for (int f : query) {
+      total += grid.cells_of(boxes[idx(f)]);
+      if (total > 16 * q + 64) return false;  // boxes spanning many cells: the sweep is better
+    }
+    std::vector<GridEntry> entries;
+    entries.reserve(total);
+    for (int f : query)
+      grid.for_each_cell(boxes[idx(f)], [&](std::uint64_t cell) { entries.push_back({cell, f}); });
+    std::sort(entries.begin(), entries.end());
+    std::vector<std::size_t> run_start;
+    std::vector<std::uint64_t> run_cell;
+    std::size_t work = 0;
+    for (std::size_t i = 0; i < entries.size();) {
+      std::size_t j = i + 1;
+      while (j < entries.size() && entries[j].cell == entries[i].cell) ++j;
+      run_start.push_back(i);
+      run_cell.push_back(entries[i].cell);
+      work += (j - i) * (j - i - 1) / 2;
+      i = j;
+    }
+    run_start.push_back(entries.size());
+    // Crowded cells (all faces in a few cells would make this quadratic). Fine patches in a coarse
+    // mesh stay well below the limit: eight_20's thin parts, about 110 box tests per queried face,
+    // took 11.8 s of checks in the grid against 20.6 s in CGAL's scan.
+    if (work > 1024 * q + 4096) return false;
+    // The other faces' lookups: estimated first, for the same reasons.
+    std::size_t lookups = 0;
+    if (q < n) {
+      for (std::size_t f = 0; f < n; ++f)
+        if (!queried[f]) {
+          lookups += grid.cells_of(boxes[f]);
+          if (lookups > 16 * n) return false;
+        }
+    }
+    const std::size_t runs = run_cell.size();
+    // Pairs of queried faces, cell by cell.
+    const std::size_t step = (runs + chunks - 1) / chunks;
+    parallel_over(chunks, 0, [&](std::size_t c) {
+      const std::size_t r_end = std::min(runs, (c + 1) * step);
+      for (std::size_t r = std::min(runs, c * step); r < r_end; ++r)
+        for (std::size_t i = run_start[r]; i < run_start[r + 1]; ++i)
+          for (std::size_t j = i + 1; j < run_start[r + 1]; ++j) {
+            const int f = entries[i].face, g = entries[j].face;  // f < g: sorted within a cell
+            if (grid.owned_by(boxes[idx(f)], boxes[idx(g)], run_cell[r])) visit(f, g, c);
+          }
+    });
+    if (q == n) return true;
+    // Every other face against the queried faces in its cells.
+    const std::size_t face_step = (n + chunks - 1) / chunks;
+    parallel_over(chunks, 0, [&](std::size_t c) {
+      const std::size_t f_end = std::min(n, (c + 1) * face_step);
+      for (std::size_t f = std::min(n, c * face_step); f < f_end; ++f) {
+        if (queried[f]) continue;
+        grid.for_each_cell(boxes[f], [&](std::uint64_t cell) {
+          const auto it = std::lower_bound(run_cell.begin(), run_cell.end(), cell);
+          if (it == run_cell.end() || *it != cell) return;
+          const std::size_t r = static_cast<std::size_t>(it - run_cell.begin());
+          for (std::size_t i = run_start[r]; i < run_start[r + 1]; ++i) {
+            const int g = entries[i].face;
+            if (grid.owned_by(boxes[f], boxes[idx(g)], cell))
+              visit(std::min(static_cast<int>(f), g), std::max(static_cast<int>(f), g), c);
+          }
+        });
+      }
+    });
+    return true;
+  }
+
+ private:
+  explicit FaceGrid(const std::vector<CGAL::Bbox_3>& boxes) {
+    const std::size_t n = boxes.size();
+    CGAL::Bbox_3 all;
+    std::vector<double> extent(n);
+    for (std::size_t f = 0; f < n; ++f) {
+      all += boxes[f];
+      extent[f] = std::max({boxes[f].xmax() - boxes[f].xmin(), boxes[f].ymax() - boxes[f].ymin(),
+                            boxes[f].zmax() - boxes[f].zmin()});
+    }
+    if (!std::isfinite(all.xmin()) || !std::isfinite(all.xmax()) || !std::isfinite(all.ymin()) ||
+        !std::isfinite(all.ymax()) || !std::isfinite(all.zmin()) || !std::isfinite(all.zmax()))
+      return;
+    // Cell size: twice the median box extent (a typical box meets 1-8 cells), and at least the
+    // model's extent / 2^20 so that cell coordinates fit in 21 bits. (Factors 0.7-3 measured
+    // alike on hand_ok.)
+    std::nth_element(extent.begin(), extent.begin() + static_cast<std::ptrdiff_t>(n / 2), extent.end());
+    const double span = std::max({all.xmax() - all.xmin(), all.ymax() - all.ymin(), all.zmax() - all.zmin()});
+    const double h = std::max(2.0 * extent[n / 2], span / static_cast<double>(1u << 20));
+    if (!(h > 0) || !std::isfinite(h)) return;
+    inv_ = 1.0 / h;
+    origin_ = {all.xmin(), all.ymin(), all.zmin()};
+    ok_ = true;
+  }
+
+  // Monotone in x, so a box's cell range holds the cell of every point of the box.
+  std::uint64_t cell_of(double x, std::size_t axis) const {
+    const double c = std::floor((x - origin_[axis]) * inv_);
+    return static_cast<std::uint64_t>(std::clamp(c, 0.0, static_cast<double>((1u << 21) - 1)));
+  }
+  static std::uint64_t key(std::uint64_t x, std::uint64_t y, std::uint64_t z) { return (x << 42) | (y << 21) | z; }
+
+  std::size_t cells_of(const CGAL::Bbox_3& b) const {
+    return (cell_of(b.xmax(), 0) - cell_of(b.xmin(), 0) + 1) * (cell_of(b.ymax(), 1) - cell_of(b.ymin(), 1) + 1) *
+           (cell_of(b.zmax(), 2) - cell_of(b.zmin(), 2) + 1);
+  }
+  template <class F>
+  void for_each_cell(const CGAL::Bbox_3& b, const F& f) const {
+    const std::uint64_t x0 = cell_of(b.xmin(), 0), y0 = cell_of(b.ymin(), 1), z0 = cell_of(b.zmin(), 2);
+    const std::uint64_t x1 = cell_of(b.xmax(), 0), y1 = cell_of(b.ymax(), 1), z1 = cell_of(b.zmax(), 2);
+    for (std::uint64_t x = x0; x <= x1; ++x)
+      for (std::uint64_t y = y0; y <= y1; ++y)
+        for (std::uint64_t z = z0; z <= z1; ++z) f(key(x, y, z));
+  }
+  // The boxes overlap, and `cell` holds the lowest corner of their intersection.
+  bool owned_by(const CGAL::Bbox_3& a, const CGAL::Bbox_3& b, std::uint64_t cell) const {
+    return boxes_overlap(a, b) &&
+           key(cell_of(std::max(a.xmin(), b.xmin()), 0), cell_of(std::max(a.ymin(), b.ymin()), 1),
+               cell_of(std::max(a.zmin(), b.zmin()), 2)) == cell;
+  }
+
+  bool ok_ = false;
+  double inv_ = 0;
+  std::array<double, 3> origin_{};
+};
 }  // namespace
 
 std::vector<std::array<int, 2>> intersecting_face_pairs(const std::vector<Vec3>& points,
                                                         const std::vector<Face>& faces,
-                                                        const std::vector<int>& query_faces) {
+                                                        const std::vector<int>& query_faces,
+                                                        BroadPhase broad_phase) {
   std::vector<std::array<int, 2>> pairs;
   if (query_faces.empty() || faces.empty()) return pairs;
-  const std::vector<std::uint8_t> embedded = embedded_fans(points, faces);
+  const std::vector<std::uint8_t> embedded =
+      embedded_fans(points, faces, 2 * query_faces.size() >= faces.size() ? nullptr : &query_faces);
   // Candidate pairs first (box overlaps, minus pairs sharing a vertex whose fan is embedded),
   // then the exact tests, in parallel chunks when there are many (a full check of a refined
   // 100k-face mesh has about a million; mesh improvement runs one per round).
@@ -256,6 +452,37 @@ std::vector<std::array<int, 2>> intersecting_face_pairs(const std::vector<Vec3>&
     if (f == g || shares_embedded_vertex(f, g)) return;
     candidates.push_back({f, g});
   };
+  constexpr std::size_t kChunks = 64;
+  if (broad_phase == BroadPhase::kAuto) {
+    // The parallel grid (FaceGrid), testing each pair as it is found.
+    std::vector<CGAL::Bbox_3> boxes(faces.size());
+    std::vector<std::uint8_t> queried(faces.size(), 0), degenerate(faces.size(), 0);
+    for (int f : query_faces) queried[idx(f)] = 1;
+    std::vector<int> query;  // each queried face once, in order
+    for (std::size_t f = 0; f < faces.size(); ++f)
+      if (queried[f]) query.push_back(static_cast<int>(f));
+    parallel_ranges(faces.size(), 4096, [&](std::size_t b, std::size_t e) {
+      for (std::size_t f = b; f < e; ++f) {
+        const Face& fc = faces[f];
+        boxes[f] = face_box(points, fc);
+        degenerate[f] = CGAL::collinear(to_point(points[idx(fc[0])]), to_point(points[idx(fc[1])]),
+                                        to_point(points[idx(fc[2])]))
+                            ? 1
+                            : 0;
+      }
+    });
+    std::vector<std::vector<std::array<int, 2>>> found(kChunks);
+    const bool gridded = FaceGrid::for_each_pair(boxes, queried, query, kChunks, [&](int f, int g, std::size_t c) {
+      if (shares_embedded_vertex(f, g)) return;
+      if (faces_intersect(points, faces[idx(f)], faces[idx(g)], degenerate[idx(f)] != 0, degenerate[idx(g)] != 0))
+        found[c].push_back({f, g});
+    });
+    if (gridded) {
+      for (const auto& part : found) pairs.insert(pairs.end(), part.begin(), part.end());
+      std::sort(pairs.begin(), pairs.end());
+      return pairs;
+    }
+  }
   // Brute-force scanning below 100 boxes: measured fastest on refined union meshes (10: 1.5x,
   // 2000 as in PMP: 2.5x slower).
   const std::ptrdiff_t cutoff = 100;
@@ -320,7 +547,6 @@ std::vector<std::array<int, 2>> intersecting_face_pairs(const std::vector<Vec3>&
     mark_degenerate(0, faces.size());
     test_range(0, candidates.size(), pairs);
   } else {
-    constexpr std::size_t kChunks = 64;
     const std::size_t face_step = (faces.size() + kChunks - 1) / kChunks;
     parallel_over(kChunks, 0, [&](std::size_t c) {
       mark_degenerate(std::min(faces.size(), c * face_step), std::min(faces.size(), (c + 1) * face_step));

@@ -15,12 +15,19 @@
 
 namespace ps {
 
+// How candidate pairs are found. kAuto: a uniform grid scanned in parallel when the mesh is large
+// and its faces alike in size (mesh improvement's refined meshes), CGAL's sequential box sweep
+// otherwise. kSweep: always CGAL's sweep (tests compare the two). The pairs are the same.
+enum class BroadPhase { kAuto, kSweep };
+
 // Pairs {q, g} with q in query_faces (indices into faces) and g any face, q != g, that
-// intersect improperly; each unordered pair once, sorted. faces may hold any triangle soup;
-// faces are compared by vertex index, so coincident duplicate vertices count as distinct.
+// intersect improperly; each unordered pair once, as {smaller, larger} index, sorted. faces may
+// hold any triangle soup; faces are compared by vertex index, so coincident duplicate vertices
+// count as distinct.
 std::vector<std::array<int, 2>> intersecting_face_pairs(const std::vector<Vec3>& points,
                                                         const std::vector<Face>& faces,
-                                                        const std::vector<int>& query_faces);
+                                                        const std::vector<int>& query_faces,
+                                                        BroadPhase broad_phase = BroadPhase::kAuto);
 
 // Every improperly intersecting pair of faces of the mesh (all faces as queries).
 std::vector<std::array<int, 2>> self_intersecting_pairs(const TriMesh& mesh);

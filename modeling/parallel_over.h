@@ -48,4 +48,22 @@ void parallel_over(std::size_t n, int threads, const Body& body) {
 #endif
 }
 
+// body(begin, end) over consecutive ranges covering 0..n-1, in parallel when n is at least
+// `min_parallel` (below that, one call on the calling thread: the hand-over costs more). For
+// per-element loops whose iterations write only their own slots, so the result does not depend
+// on the split.
+template <class Body>
+void parallel_ranges(std::size_t n, std::size_t min_parallel, const Body& body) {
+  if (n < min_parallel || n < 2) {
+    if (n > 0) body(std::size_t{0}, n);
+    return;
+  }
+  constexpr std::size_t kChunks = 32;
+  const std::size_t step = (n + kChunks - 1) / kChunks;
+  parallel_over(kChunks, 0, [&](std::size_t c) {
+    const std::size_t begin = std::min(n, c * step), end = std::min(n, (c + 1) * step);
+    if (begin < end) body(begin, end);
+  });
+}
+
 }  // namespace ps

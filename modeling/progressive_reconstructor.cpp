@@ -787,7 +787,11 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
     if (g_improve_hook) {
       ImproveOptions io;
       io.iterations = options_.improve_iterations;
-      auto improved = g_improve_hook(mesh, rep.curve_vertex, rep.curve_edges, io, nullptr);
+      ImproveReport irep;
+      auto improved = g_improve_hook(mesh, rep.curve_vertex, rep.curve_edges, io, &irep);
+      rep.timings.improve_refine_ms = irep.refine_ms;
+      rep.timings.improve_smooth_ms = irep.smooth_ms;
+      rep.timings.improve_check_ms = irep.check_ms;
       if (improved) {
         mesh = std::move(*improved);
         rep.improved = true;

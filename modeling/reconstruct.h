@@ -33,6 +33,9 @@ struct ReconstructOptions {
 struct StageTimings {
   double validate_ms = 0, partition_ms = 0, primitives_ms = 0, union_ms = 0, stitch_ms = 0,
          improve_ms = 0, total_ms = 0;
+  // Within improve_ms (mesh_improve.h's ImproveReport): refinement, smoothing, and the
+  // self-intersection checks after each round, summed over the rounds.
+  double improve_refine_ms = 0, improve_smooth_ms = 0, improve_check_ms = 0;
 };
 
 struct ReconstructReport {
