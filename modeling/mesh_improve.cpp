@@ -31,14 +31,6 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-// Faces whose vertex triple differs from the one at the same index in `before`, or new.
-std::vector<int> changed_faces(const HalfedgeMesh& m, const std::vector<Face>& before) {
-  std::vector<int> out;
-  for (int f = 0; f < m.num_faces(); ++f)
-    if (idx(f) >= before.size() || m.faces[idx(f)] != before[idx(f)]) out.push_back(f);
-  return out;
-}
-
 }  // namespace
 
 namespace {
@@ -137,120 +129,137 @@ Result<TriMesh> improve_unit_scale(const TriMesh& mesh, const std::vector<bool>&
     const HalfedgeMesh start = m;
     const std::vector<std::uint8_t> fixed_start = fixed;
 
-    // === Refinement (Liepa), checked at once. Splits at centroids keep the surface as it is;
-    // only flips can make faces cross, so the faces the refinement changed are tested against the
-    // mesh before any smoothing. After a crossing the refinement is redone from the round's start
-    // with flips locked near it, then (third attempt) with every flip locked, which leaves the
-    // geometry of the start. (Until 2026-12-05 the check came after smoothing, and a round with a
-    // bad flip was refined, smoothed and checked twice: 7 of 10 rounds on hand_ok.)
-    FlipLock lock;
-    RefineStats rs;
-    for (int attempt = 0;; ++attempt) {
-      auto t0 = Clock::now();
-      rs = refine_mesh(m, fixed, lock, ropt);
-      rep.refine_ms += ms_since(t0);
-      if (!options.check_self_intersections) break;
-      t0 = Clock::now();
-      const auto pairs = intersecting_face_pairs(m.positions, m.faces, changed_faces(m, start.faces));
-      rep.check_ms += ms_since(t0);
-      if (pairs.empty()) break;
-      if (lock.all) {
-        // Crossings with every flip locked were in the input already: no refinement this round.
+    // === Refinement (Liepa), checked at once. Splits at centroids keep each face's plane (up to
+    // the centroid's rounding); flips are what can make faces cross. So the faces that came from
+    // flips are tested against the mesh before any smoothing, and after a crossing the refinement
+    // is redone from the round's start with flips locked near it, then with every flip locked.
+    // (Until 2026-12-05 the one check came after smoothing, and a round with a bad flip was
+    // refined, smoothed and checked twice: 7 of 10 rounds on hand_ok.) A crossing that neither a
+    // flip nor a smoothing move made (a rounded centroid) shows up in the smoothing check below,
+    // and then the round is redone without refinement.
+    bool refine = true;
+    for (;;) {
+      FlipLock lock;
+      RefineStats rs;
+      for (int attempt = 0; refine; ++attempt) {
+        auto t0 = Clock::now();
+        std::vector<std::uint8_t> flipped;
+        rs = refine_mesh(m, fixed, lock, ropt, &flipped);
+        rep.refine_ms += ms_since(t0);
+        if (!options.check_self_intersections) break;
+        t0 = Clock::now();
+        std::vector<int> from_flips;
+        for (std::size_t f = 0; f < flipped.size(); ++f)
+          if (flipped[f]) from_flips.push_back(static_cast<int>(f));
+        const auto pairs = intersecting_face_pairs(m.positions, m.faces, from_flips);
+        rep.check_ms += ms_since(t0);
+        if (pairs.empty()) break;
+        if (lock.all) {  // not reached: with every flip locked nothing is queried
+          m = start;
+          fixed = fixed_start;
+          rs = RefineStats{};
+          break;
+        }
+        ++rep.refinement_rollbacks;
+        for (const auto& pr : pairs) {
+          Box3 region;
+          for (int f : pr)
+            for (int v : m.faces[idx(f)]) region.extend(m.position(v));
+          const Vec3 grow = Vec3::Constant(region.diagonal());
+          region.min -= grow;
+          region.max += grow;
+          lock.regions.push_back(region);
+        }
+        if (attempt == 1) lock.all = true;
         m = start;
         fixed = fixed_start;
-        rs = RefineStats{};
+      }
+      const std::vector<Vec3> refined = m.positions;
+
+      // === Smoothing (Eq. 4.3); moves that turn a face over are undone at once
+      auto t0 = Clock::now();
+      if (options.smoothing_steps > 0) {
+        Smoother smoother(m, fixed, sopt);
+        for (int s = 0; s < options.smoothing_steps; ++s) rep.smoothing_rollbacks += smoother.step(m);
+      }
+      rep.smooth_ms += ms_since(t0);
+      if (!options.check_self_intersections) {
+        rep.splits += rs.splits;
+        rep.flips += rs.flips;
+        break;
+      }
+
+      // === Self-intersection check of the smoothing: faces with a moved corner are tested, and
+      // the moves of the corners of every crossing pair are undone until the mesh is clean.
+      t0 = Clock::now();
+      const int nf = m.num_faces();
+      std::vector<std::uint8_t> moved(idx(m.num_vertices()), 0);
+      for (int v = 0; v < m.num_vertices(); ++v) moved[idx(v)] = m.positions[idx(v)] != refined[idx(v)];
+      // The first pass queries every face with a moved corner. Each later pass queries only the
+      // faces whose corners were just put back (plus the faces of pairs not yet resolved): any
+      // other face kept its position since the previous pass, which tested it against the whole
+      // mesh, so a new intersection must involve a face that moved in between. This keeps the
+      // rollback passes local instead of rescanning the whole mesh each time.
+      std::vector<int> query;
+      for (int f = 0; f < nf; ++f) {
+        const Face& fc = m.faces[idx(f)];
+        if (moved[idx(fc[0])] || moved[idx(fc[1])] || moved[idx(fc[2])]) query.push_back(f);
+      }
+      std::vector<std::uint8_t> reset(idx(m.num_vertices()), 0);
+      std::vector<std::array<int, 2>> unresolved;
+      for (;;) {
+        const auto pairs = intersecting_face_pairs(m.positions, m.faces, query);
+        unresolved.clear();
+        if (pairs.empty()) break;
+        int undone = 0;
+        for (const auto& pr : pairs) {
+          bool any_moved = false;
+          for (int f : pr)
+            for (int v : m.faces[idx(f)])
+              if (moved[idx(v)]) {
+                m.positions[idx(v)] = refined[idx(v)];
+                moved[idx(v)] = 0;
+                reset[idx(v)] = 1;
+                any_moved = true;
+                ++undone;
+              }
+          if (!any_moved) unresolved.push_back(pr);
+        }
+        rep.smoothing_rollbacks += undone;
+        // Undoing some moves can turn a face whose other vertices stay moved.
+        const std::vector<Vec3> before_fold = m.positions;
+        rep.smoothing_rollbacks += revert_folded_faces(m, refined);
+        for (int v = 0; v < m.num_vertices(); ++v)
+          if (m.positions[idx(v)] != before_fold[idx(v)]) {
+            reset[idx(v)] = 1;
+            moved[idx(v)] = m.positions[idx(v)] != refined[idx(v)];
+          }
+        if (undone == 0) break;  // only crossings without a moved corner are left
+        query.clear();
+        std::vector<std::uint8_t> in_query(idx(nf), 0);
+        for (int f = 0; f < nf; ++f) {
+          const Face& fc = m.faces[idx(f)];
+          if (reset[idx(fc[0])] || reset[idx(fc[1])] || reset[idx(fc[2])]) in_query[idx(f)] = 1;
+        }
+        for (const auto& pr : unresolved)
+          for (int f : pr) in_query[idx(f)] = 1;
+        for (int f = 0; f < nf; ++f)
+          if (in_query[idx(f)]) query.push_back(f);
+        std::fill(reset.begin(), reset.end(), 0);
+      }
+      rep.check_ms += ms_since(t0);
+      // Crossings left without a moved corner: from a split (refinement), or in the input (then
+      // the round without refinement keeps them, as nothing here made them).
+      if (unresolved.empty() || !refine) {
+        rep.splits += rs.splits;
+        rep.flips += rs.flips;
         break;
       }
       ++rep.refinement_rollbacks;
-      for (const auto& pr : pairs) {
-        Box3 region;
-        for (int f : pr)
-          for (int v : m.faces[idx(f)]) region.extend(m.position(v));
-        const Vec3 grow = Vec3::Constant(region.diagonal());
-        region.min -= grow;
-        region.max += grow;
-        lock.regions.push_back(region);
-      }
-      if (attempt == 1) lock.all = true;
+      refine = false;
       m = start;
       fixed = fixed_start;
     }
-    rep.splits += rs.splits;
-    rep.flips += rs.flips;
-    const std::vector<Vec3> refined = m.positions;
-
-    // === Smoothing (Eq. 4.3); moves that turn a face over are undone at once
-    auto t0 = Clock::now();
-    if (options.smoothing_steps > 0) {
-      Smoother smoother(m, fixed, sopt);
-      for (int s = 0; s < options.smoothing_steps; ++s) rep.smoothing_rollbacks += smoother.step(m);
-    }
-    rep.smooth_ms += ms_since(t0);
-    if (!options.check_self_intersections) continue;
-
-    // === Self-intersection check of the smoothing: faces with a moved corner are tested, and the
-    // moves of the corners of every crossing pair are undone until the mesh is clean. The refined
-    // mesh was clean around every changed face, so a crossing always has a moved corner.
-    t0 = Clock::now();
-    const int nf = m.num_faces();
-    std::vector<std::uint8_t> moved(idx(m.num_vertices()), 0);
-    for (int v = 0; v < m.num_vertices(); ++v) moved[idx(v)] = m.positions[idx(v)] != refined[idx(v)];
-    // The first pass queries every face with a moved corner. Each later pass queries only the
-    // faces whose corners were just put back (plus the faces of pairs not yet resolved): any
-    // other face kept its position since the previous pass, which tested it against the whole
-    // mesh, so a new intersection must involve a face that moved in between. This keeps the
-    // rollback passes local instead of rescanning the whole mesh each time.
-    std::vector<int> query;
-    for (int f = 0; f < nf; ++f) {
-      const Face& fc = m.faces[idx(f)];
-      if (moved[idx(fc[0])] || moved[idx(fc[1])] || moved[idx(fc[2])]) query.push_back(f);
-    }
-    std::vector<std::uint8_t> reset(idx(m.num_vertices()), 0);
-    for (;;) {
-      const auto pairs = intersecting_face_pairs(m.positions, m.faces, query);
-      if (pairs.empty()) break;
-      int undone = 0;
-      std::vector<std::array<int, 2>> unresolved;
-      for (const auto& pr : pairs) {
-        bool any_moved = false;
-        for (int f : pr)
-          for (int v : m.faces[idx(f)])
-            if (moved[idx(v)]) {
-              m.positions[idx(v)] = refined[idx(v)];
-              moved[idx(v)] = 0;
-              reset[idx(v)] = 1;
-              any_moved = true;
-              ++undone;
-            }
-        if (!any_moved) unresolved.push_back(pr);
-      }
-      rep.smoothing_rollbacks += undone;
-      // Undoing some moves can turn a face whose other vertices stay moved.
-      const std::vector<Vec3> before_fold = m.positions;
-      rep.smoothing_rollbacks += revert_folded_faces(m, refined);
-      for (int v = 0; v < m.num_vertices(); ++v)
-        if (m.positions[idx(v)] != before_fold[idx(v)]) {
-          reset[idx(v)] = 1;
-          moved[idx(v)] = m.positions[idx(v)] != refined[idx(v)];
-        }
-      if (undone == 0) {
-        // Only pairs without a moved corner are left: they were in the input (the refinement
-        // check passed), so the smoothing is kept and they stay as they came.
-        break;
-      }
-      query.clear();
-      std::vector<std::uint8_t> in_query(idx(nf), 0);
-      for (int f = 0; f < nf; ++f) {
-        const Face& fc = m.faces[idx(f)];
-        if (reset[idx(fc[0])] || reset[idx(fc[1])] || reset[idx(fc[2])]) in_query[idx(f)] = 1;
-      }
-      for (const auto& pr : unresolved)
-        for (int f : pr) in_query[idx(f)] = 1;
-      for (int f = 0; f < nf; ++f)
-        if (in_query[idx(f)]) query.push_back(f);
-      std::fill(reset.begin(), reset.end(), 0);
-    }
-    rep.check_ms += ms_since(t0);
   }
 
   rep.faces_out = m.num_faces();

@@ -55,6 +55,11 @@ class Relaxer {
     if (!should_flip(h)) return false;
     m_.flip(h);
     ++flips_;
+    if (flipped_) {
+      flipped_->resize(idx(m_.num_faces()), 0);
+      (*flipped_)[idx(HalfedgeMesh::face_of(h))] = 1;
+      (*flipped_)[idx(HalfedgeMesh::face_of(m_.twin(h)))] = 1;
+    }
     if (stack) {
       const int t = m_.twin(h);
       stack->push_back(HalfedgeMesh::next(h));
@@ -88,12 +93,14 @@ class Relaxer {
   }
 
   int flips() const { return flips_; }
+  void track_flips(std::vector<std::uint8_t>* flipped) { flipped_ = flipped; }
 
  private:
   HalfedgeMesh& m_;
   const FlipLock& lock_;
   double cos_max_;
   int flips_ = 0;
+  std::vector<std::uint8_t>* flipped_ = nullptr;
 };
 
 }  // namespace
@@ -183,12 +190,14 @@ int relax_all_edges(HalfedgeMesh& mesh, const FlipLock& lock, const RefineOption
 
 // === Refinement: split + relax until no face splits
 RefineStats refine_mesh(HalfedgeMesh& m, std::vector<std::uint8_t>& fixed, const FlipLock& lock,
-                        const RefineOptions& o) {
+                        const RefineOptions& o, std::vector<std::uint8_t>* flipped) {
   RefineStats stats;
   std::vector<double> sigma = length_attributes(m, fixed);
   if (o.min_length > 0)
     for (double& x : sigma) x = std::max(x, o.min_length);
   Relaxer relaxer(m, lock, o);
+  if (flipped) flipped->assign(idx(m.num_faces()), 0);
+  relaxer.track_flips(flipped);
   // The geometry changed everywhere since the last refinement (smoothing): relax every edge
   // first; later passes only need the edges around the new faces.
   relaxer.relax_all();
@@ -212,6 +221,11 @@ RefineStats refine_mesh(HalfedgeMesh& m, std::vector<std::uint8_t>& fixed, const
       }
       if (!split) continue;
       m.split_face(f, c);
+      if (flipped) {
+        flipped->resize(idx(m.num_faces()), 0);
+        const std::uint8_t from_flip = (*flipped)[idx(f)];
+        (*flipped)[idx(m.num_faces() - 2)] = (*flipped)[idx(m.num_faces() - 1)] = from_flip;
+      }
       sigma.push_back(sc);
       fixed.push_back(0);
       ++splits;
@@ -228,6 +242,7 @@ RefineStats refine_mesh(HalfedgeMesh& m, std::vector<std::uint8_t>& fixed, const
     relaxer.relax_from(touched);
   }
   stats.flips = relaxer.flips();
+  if (flipped) flipped->resize(idx(m.num_faces()), 0);
   return stats;
 }
 

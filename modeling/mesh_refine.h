@@ -46,9 +46,13 @@ struct FlipLock {
   bool locks(const Box3& quad) const;
 };
 
-// Refines in place. fixed grows with the vertex count (new vertices are free).
+// Refines in place. fixed grows with the vertex count (new vertices are free). With `flipped`,
+// it comes back with one flag per face of the result: 1 where the face came from a flip (or is
+// part of a face that did, after splits), 0 where the face is a face of the input or part of
+// one, split at centroids only, so lying in that face's plane up to the centroid's rounding.
 RefineStats refine_mesh(HalfedgeMesh& mesh, std::vector<std::uint8_t>& fixed,
-                        const FlipLock& lock = {}, const RefineOptions& options = {});
+                        const FlipLock& lock = {}, const RefineOptions& options = {},
+                        std::vector<std::uint8_t>* flipped = nullptr);
 
 // Relaxes every edge until no flip applies (or a cap of 8 flips per edge is reached); returns
 // the number of flips. Exposed for tests.
