@@ -161,6 +161,11 @@ bool faces_intersect(const std::vector<Vec3>& pts, const Face& f, const Face& g,
   return CGAL::do_intersect(tf, tg);
 }
 
+// The face's corners are collinear (exact predicate): a segment or a point, not a triangle.
+bool collinear_face(const std::vector<Vec3>& pts, const Face& f) {
+  return CGAL::collinear(to_point(pts[idx(f[0])]), to_point(pts[idx(f[1])]), to_point(pts[idx(f[2])]));
+}
+
 CGAL::Bbox_3 face_box(const std::vector<Vec3>& pts, const Face& f) {
   const Vec3& a = pts[idx(f[0])];
   const Vec3& b = pts[idx(f[1])];
@@ -465,10 +470,7 @@ std::vector<std::array<int, 2>> intersecting_face_pairs(const std::vector<Vec3>&
       for (std::size_t f = b; f < e; ++f) {
         const Face& fc = faces[f];
         boxes[f] = face_box(points, fc);
-        degenerate[f] = CGAL::collinear(to_point(points[idx(fc[0])]), to_point(points[idx(fc[1])]),
-                                        to_point(points[idx(fc[2])]))
-                            ? 1
-                            : 0;
+        degenerate[f] = collinear_face(points, fc) ? 1 : 0;
       }
     });
     std::vector<std::vector<std::array<int, 2>>> found(kChunks);
@@ -528,10 +530,7 @@ std::vector<std::array<int, 2>> intersecting_face_pairs(const std::vector<Vec3>&
     for (std::size_t f = begin; f < end; ++f)
       if (named[f]) {
         const Face& fc = faces[f];
-        degenerate[f] = CGAL::collinear(to_point(points[idx(fc[0])]), to_point(points[idx(fc[1])]),
-                                        to_point(points[idx(fc[2])]))
-                            ? 1
-                            : 0;
+        degenerate[f] = collinear_face(points, fc) ? 1 : 0;
       }
   };
   auto test_range = [&](std::size_t begin, std::size_t end, std::vector<std::array<int, 2>>& out) {

@@ -31,6 +31,14 @@ bool face_folded(const Vec3& n0, const Vec3& n, const std::vector<Vec3>& p0, con
   return !degenerate(n0, f, p0);
 }
 
+// Face f of m turned over or collapsed since `before` (its normal then computed from `before`).
+bool folded_since(const HalfedgeMesh& m, int f, const std::vector<Vec3>& before) {
+  const Face& fc = m.faces[idx(f)];
+  const Vec3& a = before[idx(fc[0])];
+  const Vec3 n0 = (before[idx(fc[1])] - a).cross(before[idx(fc[2])] - a);
+  return face_folded(n0, m.face_normal(f), before, fc, m.positions);
+}
+
 }  // namespace
 
 Smoother::Smoother(const HalfedgeMesh& m, const std::vector<std::uint8_t>& fixed, const SmoothOptions& o)
@@ -131,10 +139,7 @@ int revert_folded_faces(HalfedgeMesh& m, const std::vector<Vec3>& before) {
   std::atomic<int> first{nf};
   parallel_ranges(idx(nf), kMinParallel, [&](std::size_t b, std::size_t e) {
     for (std::size_t f = b; f < e && as_int(f) < first.load(std::memory_order_relaxed); ++f) {
-      const Face& fc = m.faces[f];
-      const Vec3& a = before[idx(fc[0])];
-      const Vec3 n0 = (before[idx(fc[1])] - a).cross(before[idx(fc[2])] - a);
-      if (face_folded(n0, m.face_normal(as_int(f)), before, fc, m.positions)) {
+      if (folded_since(m, as_int(f), before)) {
         int cur = first.load();
         while (as_int(f) < cur && !first.compare_exchange_weak(cur, as_int(f))) {
         }
@@ -147,12 +152,8 @@ int revert_folded_faces(HalfedgeMesh& m, const std::vector<Vec3>& before) {
   for (int start = first.load();; start = 0) {
     int changed = 0;
     for (int f = start; f < nf; ++f) {
-      const Face& fc = m.faces[idx(f)];
-      const Vec3 n = m.face_normal(f);
-      const Vec3& a = before[idx(fc[0])];
-      const Vec3 n0 = (before[idx(fc[1])] - a).cross(before[idx(fc[2])] - a);
-      if (!face_folded(n0, n, before, fc, m.positions)) continue;
-      for (int v : fc)
+      if (!folded_since(m, f, before)) continue;
+      for (int v : m.faces[idx(f)])
         if (m.positions[idx(v)] != before[idx(v)]) {
           m.positions[idx(v)] = before[idx(v)];
           ++reverted;
