@@ -22,15 +22,21 @@ set -euo pipefail
 bin="${PLANESKETCH_BINARY:?}"
 src="${PLANESKETCH_SOURCE_DIR:?}"
 tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
+trap 'rc=$?; if [ $rc -eq 0 ]; then rm -rf "$tmp"; else echo "files kept in $tmp"; fi' EXIT
 gen="$src/scripts/make-sculpt-ops-log"
+# Every replay's messages go to a log that is shown when the replay fails (a quiet replay that
+# failed once under load left nothing to read).
+replay() {  # LOGNAME ARGS...
+  local log="$tmp/$1.err"; shift
+  "$bin" replay "$@" -q 2>"$log" || { rc=$?; echo "replay $* failed (exit $rc):"; cat "$log"; exit 1; }
+}
 
 python3 "$src/scripts/make-deform-log" --sketch-only "$tmp/sketch.jsonl"
-"$bin" replay "$tmp/sketch.jsonl" -o "$tmp/sketch.obj" -q
+replay sketch "$tmp/sketch.jsonl" -o "$tmp/sketch.obj"
 run() {  # NAME STEP...: generate, replay (model, report, expectations)
   local name="$1"; shift
   python3 "$gen" --model "$tmp/sketch.obj" "$tmp/$name.jsonl" "$@" > "$tmp/$name.expect.json"
-  "$bin" replay "$tmp/$name.jsonl" -o "$tmp/$name.obj" --report "$tmp/$name.json" -q 2>/dev/null
+  replay "$name" "$tmp/$name.jsonl" -o "$tmp/$name.obj" --report "$tmp/$name.json"
 }
 run tunnel tunnel
 run extrude extrude
@@ -41,13 +47,13 @@ run tunnel_undo tunnel undo
 run tunnel_redo tunnel undo redo
 run extrude_undo extrude-rotated undo
 
-"$bin" replay "$tmp/rotated.jsonl" -o "$tmp/rotated2.obj" --save-session "$tmp/rotated.session.json" -q 2>/dev/null
+replay rotated2 "$tmp/rotated.jsonl" -o "$tmp/rotated2.obj" --save-session "$tmp/rotated.session.json"
 cmp "$tmp/rotated.obj" "$tmp/rotated2.obj" || { echo "extrusion replay is not bit-identical"; exit 1; }
-"$bin" replay "$tmp/tunnel.jsonl" -o "$tmp/tunnel2.obj" -q 2>/dev/null
+replay tunnel2 "$tmp/tunnel.jsonl" -o "$tmp/tunnel2.obj"
 cmp "$tmp/tunnel.obj" "$tmp/tunnel2.obj" || { echo "tunnel replay is not bit-identical"; exit 1; }
 # The saved session keeps the plane's rotation: loading it rebuilds the same model.
 head -n 1 "$tmp/rotated.jsonl" > "$tmp/header.jsonl"
-"$bin" replay "$tmp/header.jsonl" --session "$tmp/rotated.session.json" -o "$tmp/rotated3.obj" -q 2>/dev/null
+replay rotated3 "$tmp/header.jsonl" --session "$tmp/rotated.session.json" -o "$tmp/rotated3.obj"
 cmp "$tmp/rotated.obj" "$tmp/rotated3.obj" || { echo "the saved session does not rebuild the turned extrusion"; exit 1; }
 cmp "$tmp/miss.obj" "$tmp/sketch.obj" || { echo "refused strokes changed the model"; exit 1; }
 cmp "$tmp/tunnel_undo.obj" "$tmp/sketch.obj" || { echo "undo of a tunnel does not restore the model"; exit 1; }
