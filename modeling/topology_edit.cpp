@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "modeling/face_intersections.h"
+#include "modeling/point_triangle_distance.h"
 
 namespace ps {
 namespace {
@@ -22,29 +23,6 @@ using PrimRef = std::pair<int, int>;  // (zone, index into that zone's solids)
 // === Point queries on small closed meshes (a prism has ~100 triangles). Hand-written: CGAL's
 // AABB tree and side-of-mesh test would bring CGAL headers into this file for a few hundred
 // triangles.
-
-// Squared distance from p to triangle abc, by the Voronoi regions of the corners, edges and
-// face (the classic closest-point case analysis).
-double point_triangle_distance2(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return ap.squaredNorm();
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return bp.squaredNorm();
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).squaredNorm();
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return cp.squaredNorm();
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).squaredNorm();
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
-    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).squaredNorm();
-  const double s = 1.0 / (va + vb + vc);
-  return (p - (a + vb * s * ab + vc * s * ac)).squaredNorm();
-}
 
 // Generalized winding number: the solid angles of the faces seen from p over 4 pi (1 inside a
 // closed outward mesh, 0 outside), each by the Van Oosterom-Strackee formula.

@@ -1,0 +1,176 @@
+#include "modeling/smoothing_clearance.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+#include "modeling/parallel_over.h"
+#include "modeling/point_triangle_distance.h"
+
+namespace ps {
+namespace {
+
+std::size_t idx(int i) { return static_cast<std::size_t>(i); }
+
+// === Uniform grid over the faces' boxes (rest positions)
+// Cells of the mean face extent; each face is listed in every cell its box overlaps (refined
+// meshes have faces of similar size, so that is a few cells each). CSR storage.
+class Grid {
+ public:
+  struct Item {
+    int face;
+    float nx, ny, nz;            // the face's unit rest normal
+    std::array<int, 3> lo_cell;  // the cell of its box's lowest corner
+  };
+
+  Grid(const std::vector<Vec3>& p, const std::vector<Face>& faces, const std::vector<Vec3>& normals) {
+    Box3 all;
+    double extent_sum = 0;
+    for (const Face& f : faces) {
+      Box3 b;
+      for (int v : f) b.extend(p[idx(v)]);
+      extent_sum += b.size().maxCoeff();
+      all.extend(b.min);
+      all.extend(b.max);
+    }
+    origin_ = all.min;
+    const Vec3 size = all.size();
+    double h = faces.empty() ? 1.0 : extent_sum / static_cast<double>(faces.size());
+    // At most about four cells per face, and never a zero cell (flat or point-like input).
+    const double max_cells = 4.0 * static_cast<double>(std::max<std::size_t>(faces.size(), 1)) + 8.0;
+    h = std::max(h, 1e-300);
+    for (;;) {
+      for (int k = 0; k < 3; ++k) dims_[idx(k)] = static_cast<long>(std::floor(size[k] / h)) + 1;
+      if (static_cast<double>(dims_[0]) * static_cast<double>(dims_[1]) * static_cast<double>(dims_[2]) <= max_cells) break;
+      h *= 1.5;
+    }
+    inv_h_ = 1.0 / h;
+    const std::size_t cells = static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]);
+    start_.assign(cells + 1, 0);
+    auto for_cells = [&](const Box3& b, auto&& fn) {
+      const auto lo = cell_of(b.min), hi = cell_of(b.max);
+      for (long z = lo[2]; z <= hi[2]; ++z)
+        for (long y = lo[1]; y <= hi[1]; ++y)
+          for (long x = lo[0]; x <= hi[0]; ++x) fn(static_cast<std::size_t>((z * dims_[1] + y) * dims_[0] + x));
+    };
+    std::vector<Box3> boxes(faces.size());
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      for (int v : faces[f]) boxes[f].extend(p[idx(v)]);
+      for_cells(boxes[f], [&](std::size_t c) { ++start_[c + 1]; });
+    }
+    for (std::size_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
+    items_.resize(start_[cells]);
+    std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const auto lo = cell_of(boxes[f].min);
+      const Item item{static_cast<int>(f), static_cast<float>(normals[f].x()), static_cast<float>(normals[f].y()),
+                      static_cast<float>(normals[f].z()),
+                      {static_cast<int>(lo[0]), static_cast<int>(lo[1]), static_cast<int>(lo[2])}};
+      for_cells(boxes[f], [&](std::size_t c) { items_[fill[c]++] = item; });
+    }
+  }
+
+  std::array<long, 3> cell_of(const Vec3& q) const {
+    std::array<long, 3> c{};
+    for (int k = 0; k < 3; ++k) {
+      const double t = std::floor((q[k] - origin_[k]) * inv_h_);
+      c[idx(k)] = static_cast<long>(std::clamp(t, 0.0, static_cast<double>(dims_[idx(k)] - 1)));
+    }
+    return c;
+  }
+
+  // fn(item) once for every face listed in a cell overlapping [lo, hi]: a face listed in several
+  // of those cells is reported by the first of them, the one holding the lowest corner of the
+  // intersection of its cell range with the query's.
+  template <class Fn>
+  void for_each_near(const Vec3& lo, const Vec3& hi, Fn&& fn) const {
+    const auto a = cell_of(lo), b = cell_of(hi);
+    for (long z = a[2]; z <= b[2]; ++z)
+      for (long y = a[1]; y <= b[1]; ++y)
+        for (long x = a[0]; x <= b[0]; ++x) {
+          const std::size_t c = static_cast<std::size_t>((z * dims_[1] + y) * dims_[0] + x);
+          for (std::size_t i = start_[c]; i < start_[c + 1]; ++i) {
+            const Item& item = items_[i];
+            if (std::max<long>(item.lo_cell[0], a[0]) != x || std::max<long>(item.lo_cell[1], a[1]) != y ||
+                std::max<long>(item.lo_cell[2], a[2]) != z)
+              continue;
+            fn(item);
+          }
+        }
+  }
+
+ private:
+  Vec3 origin_ = Vec3::Zero();
+  double inv_h_ = 1.0;
+  std::array<long, 3> dims_{1, 1, 1};
+  std::vector<std::size_t> start_;
+  std::vector<Item> items_;
+};
+
+}  // namespace
+
+// === The limit
+int limit_moves_by_clearance(std::vector<Vec3>& positions, const std::vector<Vec3>& rest,
+                             const std::vector<Face>& faces, const std::vector<std::uint8_t>* only) {
+  const std::size_t nv = rest.size();
+  if (positions.size() != nv || faces.empty() || (only && only->size() != nv)) return 0;
+  std::vector<int> moved;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (positions[v] != rest[v] && (!only || (*only)[v])) moved.push_back(static_cast<int>(v));
+  if (moved.empty()) return 0;
+
+  // Rest normals: unit per face, area-weighted unit per vertex.
+  std::vector<Vec3> face_n(faces.size()), vertex_n(nv, Vec3::Zero());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const Face& fc = faces[f];
+    const Vec3 n = (rest[idx(fc[1])] - rest[idx(fc[0])]).cross(rest[idx(fc[2])] - rest[idx(fc[0])]);
+    for (int v : fc) vertex_n[idx(v)] += n;
+    const double len = n.norm();
+    face_n[f] = len > 0 ? Vec3(n / len) : Vec3::Zero();
+  }
+  for (auto& n : vertex_n) {
+    const double len = n.norm();
+    n = len > 0 ? Vec3(n / len) : Vec3::Zero();
+  }
+
+  const Grid grid(rest, faces, face_n);
+  std::vector<std::uint8_t> limited(moved.size(), 0);
+  parallel_ranges(moved.size(), 2048, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const int v = moved[i];
+      const Vec3& r = rest[idx(v)];
+      const Vec3 move = positions[idx(v)] - r;
+      const double d = move.norm();
+      const Vec3& nv_ = vertex_n[idx(v)];
+      if (!(d > 0) || nv_ == Vec3::Zero()) continue;
+      // Only faces nearer than d / kShare can limit the move.
+      const double limit = d / kClearanceShare;
+      double best = limit;  // the nearest facing face's rest distance
+      const Vec3 reach = Vec3::Constant(limit);
+      const float nx = static_cast<float>(nv_.x()), ny = static_cast<float>(nv_.y()), nz = static_cast<float>(nv_.z());
+      grid.for_each_near(r - reach, r + reach, [&](const Grid::Item& item) {
+        if (!(item.nx * nx + item.ny * ny + item.nz * nz < 0.0f)) return;
+        const Face& fc = faces[idx(item.face)];
+        if (fc[0] == v || fc[1] == v || fc[2] == v) return;
+        const Vec3 &a = rest[idx(fc[0])], &b = rest[idx(fc[1])], &c = rest[idx(fc[2])];
+        // Box test first: most candidates are farther than the best distance so far.
+        const Vec3 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
+        const Vec3 gap = (lo - r).cwiseMax(r - hi).cwiseMax(Vec3::Zero());
+        if (gap.squaredNorm() >= best * best) return;
+        best = std::min(best, point_triangle_distance(r, a, b, c));
+      });
+      // Shortened to kShare c along its direction.
+      const double allowed = kClearanceShare * best;
+      if (best < limit && d > allowed) {  // (best == limit: nothing near; kShare * (d / kShare) may round below d)
+        positions[idx(v)] = r + (allowed / d) * move;
+        limited[i] = 1;
+      }
+    }
+  });
+  int count = 0;
+  for (std::uint8_t l : limited) count += l;
+  return count;
+}
+
+}  // namespace ps
