@@ -3,7 +3,7 @@
 // the sheets no longer cross; moves far from any facing sheet kept bit for bit, moves near one
 // limited in every direction, and only the vertices asked for; improve_mesh on
 // thin slabs with the limit off, automatic and always on, and on a flat ellipsoid that never
-// turns the automatic limit on.
+// turns the automatic limit on; the grid search against every face, bit for bit.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -186,4 +186,66 @@ TEST(SmoothingClearance, ImprovementOfThinParts) {
   EXPECT_EQ(on.clearance_limits, 0);
   EXPECT_EQ(a.vertices, b.vertices);
   EXPECT_EQ(a.faces, b.faces);
+}
+
+// The grid search (and its half-reach first stage) against every face, on a thin spherical shell
+// (sheets 0.02 apart, random moves up to 0.014 so that reaches run from below to above
+// the gap), near the origin and translated by 1000 (where the rounding of the search cube's
+// corners is largest): the limited positions are bit for bit those of the brute-force rule.
+TEST(SmoothingClearance, GridSearchEqualsEveryFace) {
+  for (const double offset : {0.0, 1000.0}) {
+    TriMesh outer = ps::testing::uv_sphere(Vec3::Zero(), 1.0, 20, 40);
+    const TriMesh inner = ps::testing::uv_sphere(Vec3::Zero(), 0.98, 20, 40);
+    const int base = static_cast<int>(outer.vertices.size());
+    for (const Vec3& p : inner.vertices) outer.vertices.push_back(p);
+    for (const Face& f : inner.faces) outer.faces.push_back({f[0] + base, f[2] + base, f[1] + base});  // inward
+    for (Vec3& p : outer.vertices) p += Vec3::Constant(offset);
+    const TriMesh& m = outer;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-0.008, 0.008);
+    std::vector<Vec3> moved = m.vertices;
+    for (auto& p : moved) p += Vec3(u(rng), u(rng), u(rng));
+
+    // Brute force: the rule of smoothing_clearance.h over every face.
+    const std::size_t nv = m.vertices.size();
+    std::vector<Vec3> face_n(m.faces.size()), vertex_n(nv, Vec3::Zero());
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+      const Face& fc = m.faces[f];
+      const Vec3 n = (m.vertices[static_cast<std::size_t>(fc[1])] - m.vertices[static_cast<std::size_t>(fc[0])])
+                         .cross(m.vertices[static_cast<std::size_t>(fc[2])] - m.vertices[static_cast<std::size_t>(fc[0])]);
+      for (int v : fc) vertex_n[static_cast<std::size_t>(v)] += n;
+      face_n[f] = n.norm() > 0 ? Vec3(n.normalized()) : Vec3::Zero();
+    }
+    std::vector<Vec3> expected = moved;
+    int expected_count = 0;
+    for (std::size_t v = 0; v < nv; ++v) {
+      const Vec3& r = m.vertices[v];
+      const Vec3 move = moved[v] - r;
+      const double d = move.norm();
+      const Vec3 vn = vertex_n[v].norm() > 0 ? Vec3(vertex_n[v].normalized()) : Vec3::Zero();
+      if (!(d > 0) || vn == Vec3::Zero()) continue;
+      const double limit = d / kClearanceShare;
+      double best = limit;
+      for (std::size_t f = 0; f < m.faces.size(); ++f) {
+        const Face& fc = m.faces[f];
+        const float dot = static_cast<float>(face_n[f].x()) * static_cast<float>(vn.x()) +
+                          static_cast<float>(face_n[f].y()) * static_cast<float>(vn.y()) +
+                          static_cast<float>(face_n[f].z()) * static_cast<float>(vn.z());
+        if (!(dot < 0.0f)) continue;
+        if (fc[0] == static_cast<int>(v) || fc[1] == static_cast<int>(v) || fc[2] == static_cast<int>(v)) continue;
+        best = std::min(best, point_triangle_distance(r, m.vertices[static_cast<std::size_t>(fc[0])],
+                                                      m.vertices[static_cast<std::size_t>(fc[1])],
+                                                      m.vertices[static_cast<std::size_t>(fc[2])]));
+      }
+      const double allowed = kClearanceShare * best;
+      if (best < limit && d > allowed) {
+        expected[v] = r + (allowed / d) * move;
+        ++expected_count;
+      }
+    }
+    ASSERT_GT(expected_count, 100) << offset;                          // the shell limits many moves
+    ASSERT_LT(expected_count, static_cast<int>(nv) - 100) << offset;  // and leaves many alone
+    EXPECT_EQ(limit_moves_by_clearance(moved, m.vertices, m.faces), expected_count) << offset;
+    for (std::size_t v = 0; v < nv; ++v) EXPECT_EQ(moved[v], expected[v]) << offset << " vertex " << v;
+  }
 }
