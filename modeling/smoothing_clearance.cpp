@@ -28,12 +28,12 @@ class Grid {
   Grid(const std::vector<Vec3>& p, const std::vector<Face>& faces, const std::vector<Vec3>& normals) {
     Box3 all;
     double extent_sum = 0;
-    for (const Face& f : faces) {
-      Box3 b;
-      for (int v : f) b.extend(p[idx(v)]);
-      extent_sum += b.size().maxCoeff();
-      all.extend(b.min);
-      all.extend(b.max);
+    std::vector<Box3> boxes(faces.size());
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      for (int v : faces[f]) boxes[f].extend(p[idx(v)]);
+      extent_sum += boxes[f].size().maxCoeff();
+      all.extend(boxes[f].min);
+      all.extend(boxes[f].max);
     }
     origin_ = all.min;
     const Vec3 size = all.size();
@@ -55,11 +55,7 @@ class Grid {
         for (long y = lo[1]; y <= hi[1]; ++y)
           for (long x = lo[0]; x <= hi[0]; ++x) fn(static_cast<std::size_t>((z * dims_[1] + y) * dims_[0] + x));
     };
-    std::vector<Box3> boxes(faces.size());
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-      for (int v : faces[f]) boxes[f].extend(p[idx(v)]);
-      for_cells(boxes[f], [&](std::size_t c) { ++start_[c + 1]; });
-    }
+    for (const Box3& b : boxes) for_cells(b, [&](std::size_t c) { ++start_[c + 1]; });
     for (std::size_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
     items_.resize(start_[cells]);
     std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
