@@ -25,7 +25,9 @@
 //
 // Usage: recon_stress_bench [--cases N] [--first-seed S] [--timeout SEC] [--oblique-every K]
 //                           [--no-improve] [--oblique-only] [--max-planes P] [--points LO HI]
-//                           [--binary PATH] [--work DIR] [--keep-failures]
+//                           [--binary PATH] [--work DIR] [--keep-failures] [--only-seed S]
+// --only-seed S runs only the case whose seed is S, as it is in the whole run (its family and
+// oblique planes depend on its index from --first-seed): to reproduce one case of a summary.
 // --keep-failures keeps the input and logs of every case that is not ok, except refusals of
 // inputs broken on purpose.
 // Case c has 2 + c % (P - 1) orthogonal planes (default P = 6) and curves of LO..HI points
@@ -68,6 +70,7 @@ namespace {
 struct Args {
   int cases = 100;
   std::uint64_t first_seed = 1;
+  std::uint64_t only_seed = 0;  // 0: every case
   double timeout_s = 10.0;
   int oblique_every = 0;
   bool oblique_only = false;
@@ -288,6 +291,7 @@ int main(int argc, char** argv) {
     };
     if (k == "--cases") a.cases = std::stoi(next());
     else if (k == "--first-seed") a.first_seed = std::stoull(next());
+    else if (k == "--only-seed") a.only_seed = std::stoull(next());
     else if (k == "--timeout") a.timeout_s = std::stod(next());
     else if (k == "--oblique-every") a.oblique_every = std::stoi(next());
     else if (k == "--no-improve") a.improve = false;
@@ -325,6 +329,7 @@ int main(int argc, char** argv) {
     const bool oblique = family == 0 && a.oblique_every > 0 && (c / 4) % a.oblique_every == a.oblique_every - 1;
     g.oblique_planes = oblique ? 1 + static_cast<int>(seed % 3) : 0;
     if (a.oblique_only && !oblique) continue;
+    if (a.only_seed != 0 && seed != a.only_seed) continue;
     if (oblique) ++oblique_cases;
     const auto gen = ps::generate_sections(g);
     ps::SectionSet sections = gen.sections;

@@ -54,10 +54,10 @@ ImproveHook g_improve_hook = &improve_mesh;  // thesis 4.5.1, modeling/mesh_impr
 // diagonal: a tenth of the tolerance by which curve vertices are recognised (curve_flags,
 // 1e-9), so a moved curve vertex stays fixed in the improvement, and 1e-4 of the guarantee
 // that curve points lie on the surface within 1e-6.
-int separate_touching_sheets(TriMesh& mesh, double gap, PinchMode mode) {
+int separate_touching_sheets(TriMesh& mesh, double gap, PinchMode mode, PinchDirection direction) {
   TriMesh separated = mesh;
   std::vector<int> moved;
-  const int split = separate_pinches(separated, gap, &moved, mode);
+  const int split = separate_pinches(separated, gap, &moved, mode, direction);
   if (split <= 0) return 0;
   std::vector<char> mark(separated.vertices.size(), 0);
   for (int v : moved) mark[uz(v)] = 1;
@@ -87,16 +87,21 @@ std::string fill_stitch_gaps(TriMesh& mesh, double plane_tol) {
 }
 
 // Separated first; joined by a sliver where separating splits no vertex or leaves a crossing.
+// Both with the copies moved along their fans' normals, then, where that leaves a crossing
+// (thin wedges, pinch_separate.h), along the bisectors of their wedges.
 // Returns the warning for the report, or empty (mesh unchanged).
 std::string resolve_touching_sheets(TriMesh& mesh, double gap) {
-  if (const int split = separate_touching_sheets(mesh, gap, PinchMode::kSeparate); split > 0)
-    return "the surface touched itself at " + std::to_string(split) +
-           " vertices (material in diagonally opposite zones); the touching sheets were separated by 1e-10 of "
-           "the bounding-box diagonal";
-  if (const int split = separate_touching_sheets(mesh, gap, PinchMode::kJoin); split > 0)
-    return "the surface touched itself at " + std::to_string(split) +
-           " vertices (material in diagonally opposite zones); the touching solids were joined there by a sliver "
-           "1e-10 of the bounding-box diagonal wide";
+  for (const PinchDirection direction : {PinchDirection::kFanNormal, PinchDirection::kInsideWedge}) {
+    const std::string along = direction == PinchDirection::kFanNormal ? "" : " (the copies moved inside their thin wedges and fans)";
+    if (const int split = separate_touching_sheets(mesh, gap, PinchMode::kSeparate, direction); split > 0)
+      return "the surface touched itself at " + std::to_string(split) +
+             " vertices (material in diagonally opposite zones); the touching sheets were separated by 1e-10 of "
+             "the bounding-box diagonal" + along;
+    if (const int split = separate_touching_sheets(mesh, gap, PinchMode::kJoin, direction); split > 0)
+      return "the surface touched itself at " + std::to_string(split) +
+             " vertices (material in diagonally opposite zones); the touching solids were joined there by a sliver "
+             "1e-10 of the bounding-box diagonal wide" + along;
+  }
   return {};
 }
 

@@ -133,4 +133,78 @@ TEST(PinchSeparate, LeavesManifoldSurfacesAloneAndRefusesOpenOnes) {
   EXPECT_EQ(open.faces, open_copy.faces);  // unchanged on refusal
 }
 
+// A tetrahedron with outward faces.
+TriMesh tet(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+  TriMesh m;
+  m.vertices = {p0, p1, p2, p3};
+  m.faces = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  if (ps::signed_volume(m) < 0)
+    for (auto& f : m.faces) std::swap(f[1], f[2]);
+  return m;
+}
+
+TEST(PinchSeparate, InsideWedgeMovesEdgeCopiesAlongTheWedgeBisector) {
+  // Two thin tetrahedra touching along the edge x = y = 0, 0 <= z <= 1: A fills a wedge of 0.11
+  // degrees about +x, B one about -x. kInsideWedge moves each copy of the edge's ends straight
+  // into its own wedge (along +x or -x, perpendicular to the edge), by the gap.
+  const double w = 0.001;
+  const TriMesh a = tet(Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(1, w, 0.5), Vec3(1, -w, 0.5));
+  const TriMesh b = tet(Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(-1, w, 0.5), Vec3(-1, -w, 0.5));
+  TriMesh m = merged(a, b);
+  ASSERT_FALSE(ps::mesh_topology(m).edge_manifold);
+  const double gap = 1e-9;
+  std::vector<int> moved;
+  ASSERT_EQ(ps::separate_pinches(m, gap, &moved, ps::PinchMode::kSeparate, ps::PinchDirection::kInsideWedge), 2);
+  ASSERT_EQ(moved.size(), 4u);
+  int plus = 0, minus = 0;
+  for (int v : moved) {
+    const Vec3& p = m.vertices[static_cast<std::size_t>(v)];
+    const Vec3 from(0, 0, std::round(p.z()));
+    EXPECT_NEAR(p.z(), from.z(), 1e-18);  // perpendicular to the edge
+    EXPECT_NEAR(std::abs(p.x()), gap, 1e-18);
+    EXPECT_NEAR(p.y(), 0.0, 1e-18);  // the bisector of a wedge symmetric about y = 0
+    (p.x() > 0 ? plus : minus) += 1;
+  }
+  EXPECT_EQ(plus, 2);
+  EXPECT_EQ(minus, 2);
+  expect_separated(m, 2, ps::signed_volume(a) + ps::signed_volume(b));
+}
+
+TEST(FanConeDirection, IsTheMaximinDirection) {
+  // Three orthogonal normals: the direction equally far from all three.
+  const Vec3 d = ps::fan_cone_direction({Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()});
+  EXPECT_NEAR((d - Vec3(1, 1, 1).normalized()).norm(), 0.0, 1e-12);
+  // A thin blade (two nearly opposite faces and one across their edge, as at stress seed 938)
+  // and a wide cone: no direction on a fine sphere sampling does better.
+  const std::vector<std::vector<Vec3>> fans = {
+      {Vec3(0.0914722, 0.8415, -0.532457).normalized(), Vec3(-0.101857, -0.798802, 0.592908).normalized(),
+       Vec3(-0.155878, -0.974685, -0.160284).normalized()},
+      {Vec3(1, 0.2, 0).normalized(), Vec3(0.3, 1, 0.1).normalized(), Vec3(0.2, 0.1, 1).normalized(),
+       Vec3(1, 1, 0.3).normalized()}};
+  for (const auto& u : fans) {
+    const Vec3 c = ps::fan_cone_direction(u);
+    ASSERT_NEAR(c.norm(), 1.0, 1e-12);
+    auto margin = [&](const Vec3& x) {
+      double m = 1.0;
+      for (const auto& n : u) m = std::min(m, n.dot(x));
+      return m;
+    };
+    EXPECT_GT(margin(c), 0.0);
+    double sampled = -1.0;
+    const int n = 400000;  // Fibonacci sphere, about 0.3 degrees apart
+    for (int i = 0; i < n; ++i) {
+      const double z = 1.0 - (2.0 * i + 1.0) / n, r = std::sqrt(1.0 - z * z), phi = 2.399963229728653 * i;
+      sampled = std::max(sampled, margin(Vec3(r * std::cos(phi), r * std::sin(phi), z)));
+    }
+    EXPECT_GE(margin(c), sampled - 1e-12);
+  }
+}
+
+TEST(FanConeDirection, ZeroWithoutADirectionStrictlyInside) {
+  EXPECT_EQ(ps::fan_cone_direction({}), Vec3::Zero());
+  EXPECT_EQ(ps::fan_cone_direction({Vec3::UnitX(), -Vec3::UnitX()}), Vec3::Zero());
+  // d . x > 0 and d . y > 0 rule out d . (-(x + y)) > 0.
+  EXPECT_EQ(ps::fan_cone_direction({Vec3::UnitX(), Vec3::UnitY(), -Vec3(1, 1, 0).normalized()}), Vec3::Zero());
+}
+
 }  // namespace
