@@ -77,9 +77,6 @@ int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved, PinchMo
   // === Corners glued across edges: both faces of a manifold edge; the faces of one wedge of a
   // pinched edge (step 1 of the header).
   DisjointSets uf(3 * nf);
-  // Unit bisectors of the glued wedges at pinched edges, summed per corner (kInsideWedge).
-  std::vector<Vec3> wedge_dir;
-  if (direction == PinchDirection::kInsideWedge) wedge_dir.assign(3 * nf, Vec3::Zero());
   struct Around {
     double angle;
     int face;
@@ -126,20 +123,8 @@ int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved, PinchMo
       // Solid wedges: each b -> a face with the next face; empty wedges (kJoin): each a -> b
       // face with the next face.
       const bool opener_runs_forward = mode == PinchMode::kJoin;
-      constexpr double kTwoPi = 6.283185307179586;
       for (std::size_t q = 0; q < n; ++q)
-        if (around[q].forward == opener_runs_forward) {
-          const int f = around[q].face, g = around[(q + 1) % n].face;
-          glue(f, g);
-          if (!wedge_dir.empty()) {
-            // The wedge runs from face q's angle up to the next face's (across 2 pi for the last).
-            double span = around[(q + 1) % n].angle - around[q].angle;
-            if (span <= 0.0) span += kTwoPi;
-            const double mid = around[q].angle + 0.5 * span;
-            const Vec3 bisector = std::cos(mid) * e1 + std::sin(mid) * e2;
-            for (const int v : {a, b}) wedge_dir[uz(corner_of(faces, f, v))] += bisector;
-          }
-        }
+        if (around[q].forward == opener_runs_forward) glue(around[q].face, around[(q + 1) % n].face);
     }
     i = j;
   }
@@ -184,14 +169,10 @@ int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved, PinchMo
   // empty wedge (its normals point into it), so the copy moves into that wedge, along the
   // normal, and the solid between the two copies becomes the joining sliver.
   const double toward_normal = mode == PinchMode::kSeparate ? -1.0 : 1.0;
-  if (!wedge_dir.empty()) {
-    // kInsideWedge: a copy on a pinched edge moves along the sum of its wedges' bisectors,
-    // gathered over its fan's corners; it replaces the normal, signed so that the loop below
-    // moves the copy along the sum.
-    std::vector<Vec3> sum(vertices.size(), Vec3::Zero());
-    for (std::size_t c = 0; c < 3 * nf; ++c) sum[uz(new_faces[c / 3][c % 3])] += wedge_dir[c];
-    // A copy split at a vertex only (no pinched edge) moves along a direction strictly inside
-    // its fan's cone where one is found (fan_cone_direction), else along the fan normal.
+  if (direction == PinchDirection::kInsideFan) {
+    // Each copy's face normals, unit, signed towards the side it moves to; where
+    // fan_cone_direction finds a direction strictly inside all of them, it replaces the
+    // normal (signed so that the loop below moves the copy along it).
     std::vector<std::vector<Vec3>> fan_normals(vertices.size());
     for (std::size_t f = 0; f < nf; ++f) {
       const Face& t = faces[f];
@@ -199,16 +180,11 @@ int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved, PinchMo
       const double len = n.norm();
       if (!(len > 0.0) || !std::isfinite(len)) continue;
       for (int k = 0; k < 3; ++k)
-        if (is_split[uz(t[uz(k)])]) fan_normals[uz(new_faces[f][uz(k)])].push_back(toward_normal * n / len);
+        if (is_split[uz(t[uz(k)])]) fan_normals[uz(new_faces[f][uz(k)])].push_back((toward_normal / len) * n);
     }
-    for (std::size_t w = 0; w < vertices.size(); ++w) {
-      if (!touched[w]) continue;
-      if (sum[w].norm() > 1e-6) {
-        normal[w] = toward_normal * sum[w];
-      } else if (const Vec3 d = fan_cone_direction(fan_normals[w]); d != Vec3::Zero()) {
-        normal[w] = toward_normal * d;
-      }
-    }
+    for (std::size_t w = 0; w < vertices.size(); ++w)
+      if (touched[w])
+        if (const Vec3 d = fan_cone_direction(fan_normals[w]); d != Vec3::Zero()) normal[w] = toward_normal * d;
   }
   std::vector<int> out_moved;
   for (std::size_t w = 0; w < vertices.size(); ++w) {

@@ -29,16 +29,15 @@
 // however they are paired in kSeparate (the fan passes through the pinched edge twice), kJoin
 // can split it: the caller tries kSeparate first, then kJoin.
 //
-// PinchDirection::kInsideWedge changes step 3 for the copies that lie on a pinched edge: each
-// moves along the bisector of the wedge its faces were glued across at that edge (the sum over
-// its pinched edges, normalised), perpendicular to the edge: into its own solid in kSeparate,
-// into the empty wedge in kJoin, the same sides as the fan normal's. Where a wedge is thin (stress
-// seed 158 of the mixed oblique set: wedges of 0.9 and 5 degrees between nearly coplanar faces
-// of two zones), the fan's normal, averaged over the whole fan, points out of the wedge and the
-// moved faces cross the other sheet however small the gap; the bisector stays inside it. Copies
-// split only at a vertex (no pinched edge) move along fan_cone_direction (below) where it finds
-// a direction, else along the fan normal. The reconstruction tries the fan normal first (its
-// results are unchanged) and kInsideWedge when both modes leave a crossing.
+// PinchDirection::kInsideFan changes step 3: each copy moves along fan_cone_direction (below)
+// of its fan's face normals, the direction furthest inside all of its faces, where one exists,
+// else along the fan normal. The fan normal, an area-weighted mean, can point out of a thin
+// wedge or a bladed fan, and then the moved faces cross the other sheet however small the gap:
+// mixed stress seed 158 (a pinched edge whose empty wedges are 0.9 and 5 degrees wide, between
+// nearly coplanar faces of neighbouring zones), seed 938 (vertex pinches whose fans are blades of
+// three to five faces, two nearly opposite), and 14 face pairs of Vetebrae's 88 pinches. The
+// reconstruction tries the fan normal first (what it resolved keeps its result bit for bit) and
+// kInsideFan when both modes leave a crossing.
 //
 // Hand-written: CGAL 5.5's PMP::duplicate_non_manifold_vertices splits vertices only, on a
 // halfedge graph, which cannot hold an edge with four faces in the first place.
@@ -53,7 +52,7 @@
 namespace ps {
 
 enum class PinchMode { kSeparate, kJoin };
-enum class PinchDirection { kFanNormal, kInsideWedge };
+enum class PinchDirection { kFanNormal, kInsideFan };
 
 int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved = nullptr,
                      PinchMode mode = PinchMode::kSeparate,

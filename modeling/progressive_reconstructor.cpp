@@ -88,11 +88,11 @@ std::string fill_stitch_gaps(TriMesh& mesh, double plane_tol) {
 
 // Separated first; joined by a sliver where separating splits no vertex or leaves a crossing.
 // Both with the copies moved along their fans' normals, then, where that leaves a crossing
-// (thin wedges, pinch_separate.h), along the bisectors of their wedges.
+// (thin wedges and bladed fans, pinch_separate.h), along directions inside their fans.
 // Returns the warning for the report, or empty (mesh unchanged).
 std::string resolve_touching_sheets(TriMesh& mesh, double gap) {
-  for (const PinchDirection direction : {PinchDirection::kFanNormal, PinchDirection::kInsideWedge}) {
-    const std::string along = direction == PinchDirection::kFanNormal ? "" : " (the copies moved inside their thin wedges and fans)";
+  for (const PinchDirection direction : {PinchDirection::kFanNormal, PinchDirection::kInsideFan}) {
+    const std::string along = direction == PinchDirection::kFanNormal ? "" : " (the copies moved inside their fans)";
     if (const int split = separate_touching_sheets(mesh, gap, PinchMode::kSeparate, direction); split > 0)
       return "the surface touched itself at " + std::to_string(split) +
              " vertices (material in diagonally opposite zones); the touching sheets were separated by 1e-10 of "

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "modeling/face_intersections.h"
@@ -143,31 +144,59 @@ TriMesh tet(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
   return m;
 }
 
-TEST(PinchSeparate, InsideWedgeMovesEdgeCopiesAlongTheWedgeBisector) {
+// The smallest value, over the moved copies and the faces around each, of -(displacement . face
+// normal at the rest position): positive when every copy moved into its own solid past every
+// one of its faces (kSeparate), which is what keeps the faces from sweeping through the other
+// sheet at the vertex.
+double worst_inward_move(const TriMesh& before, const TriMesh& after, const std::vector<int>& moved) {
+  double worst = 1.0;
+  for (int w : moved) {
+    // The copy's rest position: the original vertex at the same place up to the move.
+    const Vec3& p = after.vertices[static_cast<std::size_t>(w)];
+    Vec3 rest = p;
+    double best = 1.0;
+    for (const Vec3& q : before.vertices)
+      if ((q - p).norm() < best) best = (q - p).norm(), rest = q;
+    const Vec3 d = (p - rest).normalized();
+    for (const auto& f : after.faces) {
+      std::array<Vec3, 3> c;
+      bool has = false;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const auto v = static_cast<std::size_t>(f[k]);
+        has = has || f[k] == w;
+        c[k] = f[k] == w ? rest : after.vertices[v];
+      }
+      if (!has) continue;
+      const Vec3 n = (c[1] - c[0]).cross(c[2] - c[0]).normalized();
+      worst = std::min(worst, -n.dot(d));
+    }
+  }
+  return worst;
+}
+
+TEST(PinchSeparate, InsideFanMovesEveryCopyInsideAllOfItsFaces) {
   // Two thin tetrahedra touching along the edge x = y = 0, 0 <= z <= 1: A fills a wedge of 0.11
-  // degrees about +x, B one about -x. kInsideWedge moves each copy of the edge's ends straight
-  // into its own wedge (along +x or -x, perpendicular to the edge), by the gap.
+  // degrees about +x, B one about -x, their far faces slanted so that each fan's normal (the
+  // mean) points mostly along y, out of the wedge. kInsideFan moves each copy of the edge's ends
+  // inside all of its faces; the fan normal does not.
   const double w = 0.001;
-  const TriMesh a = tet(Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(1, w, 0.5), Vec3(1, -w, 0.5));
-  const TriMesh b = tet(Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(-1, w, 0.5), Vec3(-1, -w, 0.5));
-  TriMesh m = merged(a, b);
+  const TriMesh a = tet(Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(1, w, 0.2), Vec3(1, -w, 0.8));
+  const TriMesh b = tet(Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(-1, w, 0.2), Vec3(-1, -w, 0.8));
+  const TriMesh m = merged(a, b);
   ASSERT_FALSE(ps::mesh_topology(m).edge_manifold);
   const double gap = 1e-9;
-  std::vector<int> moved;
-  ASSERT_EQ(ps::separate_pinches(m, gap, &moved, ps::PinchMode::kSeparate, ps::PinchDirection::kInsideWedge), 2);
-  ASSERT_EQ(moved.size(), 4u);
-  int plus = 0, minus = 0;
-  for (int v : moved) {
-    const Vec3& p = m.vertices[static_cast<std::size_t>(v)];
-    const Vec3 from(0, 0, std::round(p.z()));
-    EXPECT_NEAR(p.z(), from.z(), 1e-18);  // perpendicular to the edge
-    EXPECT_NEAR(std::abs(p.x()), gap, 1e-18);
-    EXPECT_NEAR(p.y(), 0.0, 1e-18);  // the bisector of a wedge symmetric about y = 0
-    (p.x() > 0 ? plus : minus) += 1;
+  TriMesh by_normal = m, inside = m;
+  std::vector<int> moved_normal, moved_inside;
+  ASSERT_EQ(ps::separate_pinches(by_normal, gap, &moved_normal), 2);
+  ASSERT_EQ(ps::separate_pinches(inside, gap, &moved_inside, ps::PinchMode::kSeparate, ps::PinchDirection::kInsideFan), 2);
+  ASSERT_EQ(moved_inside.size(), 4u);
+  EXPECT_LT(worst_inward_move(m, by_normal, moved_normal), 0.0);
+  EXPECT_GT(worst_inward_move(m, inside, moved_inside), 0.0);
+  for (int v : moved_inside) {
+    const Vec3& p = inside.vertices[static_cast<std::size_t>(v)];
+    EXPECT_NEAR((p - Vec3(0, 0, std::round(p.z()))).norm(), gap, 1e-15);  // the copies at z = 1 round to its ulp
   }
-  EXPECT_EQ(plus, 2);
-  EXPECT_EQ(minus, 2);
-  expect_separated(m, 2, ps::signed_volume(a) + ps::signed_volume(b));
+  expect_separated(inside, 2, ps::signed_volume(a) + ps::signed_volume(b));
 }
 
 TEST(FanConeDirection, IsTheMaximinDirection) {

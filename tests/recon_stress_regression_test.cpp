@@ -283,13 +283,13 @@ INSTANTIATE_TEST_SUITE_P(ObliqueStress, RoundingRepairSeed,
 // still refused: the stitched surface touched itself, and moving the vertex copies along their
 // fans' normals made faces cross. 158: a pinched edge between two solids whose empty wedges are
 // 0.9 and 5 degrees wide; 938: two vertex pinches whose fans are thin blades. Both reconstruct
-// with the copies moved inside their wedges and fans (PinchDirection::kInsideWedge). 7 and 13 s
+// with the copies moved inside their fans (PinchDirection::kInsideFan). 7 and 13 s
 // in a release build; 1-2 min each under the sanitizers, which is why they run only in normal
 // builds (the sanitizer builds run the new code through tests/pinch_separate_test.cpp).
 #if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
 INSTANTIATE_TEST_SUITE_P(MixedStressThinPinches, RoundingRepairSeed,
-                         ::testing::Values(RoundingRepair{158, "inside their thin wedges"},
-                                           RoundingRepair{938, "inside their thin wedges"}));
+                         ::testing::Values(RoundingRepair{158, "copies moved inside their fans"},
+                                           RoundingRepair{938, "copies moved inside their fans"}));
 #endif
 
 }  // namespace
