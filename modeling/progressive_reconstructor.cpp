@@ -105,6 +105,24 @@ std::string resolve_touching_sheets(TriMesh& mesh, double gap) {
   return {};
 }
 
+// Flat slivers of the exact zone unions that rounding turned over (sliver_repair.h), given the
+// surface's crossing face pairs: removed and the seam zipped (vertices a rounding step apart at
+// its ends merged), kept when the surface is then closed, manifold, consistently oriented and
+// free of crossings. Returns the warning for the report, or empty (mesh unchanged).
+std::string zip_folded_slivers(TriMesh& mesh, const std::vector<std::array<int, 2>>& crossing, double tol) {
+  if (crossing.empty()) return {};
+  TriMesh zipped = mesh;
+  const int removed = remove_folded_slivers(zipped, crossing, tol);
+  if (removed <= 0) return {};
+  const MeshTopology zt = mesh_topology(zipped);
+  if (!zt.closed || !zt.manifold() || !zt.consistently_oriented || !self_intersecting_pairs(zipped).empty()) return {};
+  canonicalize(zipped);
+  mesh = std::move(zipped);
+  return "rounding had folded " + std::to_string(removed) +
+         " flat sliver face(s) of the exact zone unions; they were removed and the seam closed (no vertex moved by "
+         "more than 1e-10 of the diagonal)";
+}
+
 // The repairs of a stitched surface given its topology `t`, for both kinds of zones: planar
 // gaps filled (1e-9 of the diagonal `diag` as plane tolerance), then touching sheets resolved
 // (a gap of 1e-10 of it), each reported in `warnings`. Returns whether the mesh changed (the
@@ -436,19 +454,9 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
         // Flat slivers that rounding turned over (sliver_repair.h): removed and the seam
         // zipped (vertices a rounding step apart at its ends merged), kept when the surface
         // is then closed, manifold and free of crossings.
-        if (!crossing.empty()) {
-          TriMesh zipped = mesh;
-          if (const int removed = remove_folded_slivers(zipped, crossing, 1e-10 * box.diagonal()); removed > 0) {
-            const MeshTopology zt = mesh_topology(zipped);
-            if (zt.closed && zt.manifold() && zt.consistently_oriented && self_intersecting_pairs(zipped).empty()) {
-              canonicalize(zipped);
-              mesh = std::move(zipped);
-              crossing.clear();
-              rep.warnings.push_back("rounding had folded " + std::to_string(removed) +
-                                     " flat sliver face(s) of the exact zone unions; they were removed and the seam "
-                                     "closed (no vertex moved by more than 1e-10 of the diagonal)");
-            }
-          }
+        if (std::string w = zip_folded_slivers(mesh, crossing, 1e-10 * box.diagonal()); !w.empty()) {
+          crossing.clear();
+          rep.warnings.push_back(std::move(w));
         }
         if (!crossing.empty()) failure = "the stitched surface intersects itself";
       }
@@ -762,9 +770,18 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
       else
         check(mesh);
     });
-    if (!clean)
-      return Result<TriMesh>::error(
-          "reconstruction failed: the stitched surface intersects itself where two vertices almost coincide");
+    if (!clean) {
+      // What merging leaves crossing: flat slivers folded by rounding, as on the polyhedral path
+      // (CGAL's spool sliced 2x2x3: 176 crossing pairs, 277 sliver faces of 1e-10 of the
+      // diagonal or less; closed and free of crossings without them).
+      std::string w = zip_folded_slivers(mesh, self_intersecting_pairs(mesh), tol);
+      if (w.empty())
+        return Result<TriMesh>::error(
+            "reconstruction failed: the stitched surface intersects itself where two vertices almost coincide");
+      rep.warnings.push_back(std::move(w));
+      repaired = mesh;
+      check(mesh);
+    }
     if (repaired.vertices.size() != mesh.vertices.size()) {
       mesh = std::move(repaired);
       check(mesh);
