@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -55,14 +56,18 @@ std::string implausible_counts(const std::string& path, const std::string& ext) 
   if (ec) return {};
   std::ifstream in(path, std::ios::binary);
   std::string line;
+  // A count as CGAL's readers take it (`stream >> n`): the integer a token starts with, its
+  // trailing characters ignored ("4294967296M" is a face of 4294967296 corners to them; found
+  // by fuzzing, 2026-12-06). A value too large for long long counts as implausible.
   auto count_ok = [&](const std::string& tok, long long& v) {
+    std::size_t i = tok[0] == '+' || tok[0] == '-' ? 1 : 0;
+    if (i >= tok.size() || !std::isdigit(static_cast<unsigned char>(tok[i]))) return false;
     try {
-      std::size_t used = 0;
-      v = std::stoll(tok, &used);
-      return used == tok.size();
-    } catch (const std::exception&) {
-      return false;
+      v = std::stoll(tok);
+    } catch (const std::out_of_range&) {
+      v = std::numeric_limits<long long>::max();
     }
+    return true;
   };
   if (ext == ".ply") {
     for (int n = 0; n < 100000 && std::getline(in, line); ++n) {
