@@ -153,39 +153,34 @@ int separate_pinches(TriMesh& mesh, double gap, std::vector<int>* moved, PinchMo
   if (split_vertices.empty()) return 0;
 
   // === Separation (step 3): each copy moves against its fan's area-weighted normal.
+  // kSeparate: into the copy's own solid, against the normal. kJoin: a copy's fan wraps an
+  // empty wedge (its normals point into it), so the copy moves into that wedge, along the
+  // normal, and the solid between the two copies becomes the joining sliver.
+  const double toward_normal = mode == PinchMode::kSeparate ? -1.0 : 1.0;
+  const bool inside_fan = direction == PinchDirection::kInsideFan;
   std::vector<Vec3> normal(vertices.size(), Vec3::Zero());
   std::vector<char> touched(vertices.size(), 0);
+  // kInsideFan: each copy's face normals too, unit, signed towards the side it moves to.
+  std::vector<std::vector<Vec3>> fan_normals(inside_fan ? vertices.size() : 0);
   for (std::size_t f = 0; f < nf; ++f) {
     const Face& t = faces[f];
     const Vec3 n = (pos[uz(t[1])] - pos[uz(t[0])]).cross(pos[uz(t[2])] - pos[uz(t[0])]);
+    const double len = n.norm();
+    const bool has_unit = inside_fan && len > 0.0 && std::isfinite(len);
     for (int k = 0; k < 3; ++k)
       if (is_split[uz(t[uz(k)])]) {
         const int w = new_faces[f][uz(k)];
         normal[uz(w)] += n;
         touched[uz(w)] = 1;
+        if (has_unit) fan_normals[uz(w)].push_back((toward_normal / len) * n);
       }
   }
-  // kSeparate: into the copy's own solid, against the normal. kJoin: a copy's fan wraps an
-  // empty wedge (its normals point into it), so the copy moves into that wedge, along the
-  // normal, and the solid between the two copies becomes the joining sliver.
-  const double toward_normal = mode == PinchMode::kSeparate ? -1.0 : 1.0;
-  if (direction == PinchDirection::kInsideFan) {
-    // Each copy's face normals, unit, signed towards the side it moves to; where
-    // fan_cone_direction finds a direction strictly inside all of them, it replaces the
-    // normal (signed so that the loop below moves the copy along it).
-    std::vector<std::vector<Vec3>> fan_normals(vertices.size());
-    for (std::size_t f = 0; f < nf; ++f) {
-      const Face& t = faces[f];
-      const Vec3 n = (pos[uz(t[1])] - pos[uz(t[0])]).cross(pos[uz(t[2])] - pos[uz(t[0])]);
-      const double len = n.norm();
-      if (!(len > 0.0) || !std::isfinite(len)) continue;
-      for (int k = 0; k < 3; ++k)
-        if (is_split[uz(t[uz(k)])]) fan_normals[uz(new_faces[f][uz(k)])].push_back((toward_normal / len) * n);
-    }
+  // kInsideFan: where fan_cone_direction finds a direction strictly inside all of a copy's
+  // faces, it replaces the normal (signed so that the loop below moves the copy along it).
+  if (inside_fan)
     for (std::size_t w = 0; w < vertices.size(); ++w)
       if (touched[w])
         if (const Vec3 d = fan_cone_direction(fan_normals[w]); d != Vec3::Zero()) normal[w] = toward_normal * d;
-  }
   std::vector<int> out_moved;
   for (std::size_t w = 0; w < vertices.size(); ++w) {
     if (!touched[w]) continue;
