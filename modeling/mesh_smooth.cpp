@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
+#include <vector>
 
 #include "modeling/parallel_over.h"
 
@@ -37,6 +39,84 @@ bool folded_since(const HalfedgeMesh& m, int f, const std::vector<Vec3>& before)
   const Vec3& a = before[idx(fc[0])];
   const Vec3 n0 = (before[idx(fc[1])] - a).cross(before[idx(fc[2])] - a);
   return face_folded(n0, m.face_normal(f), before, fc, m.positions);
+}
+
+// The faces for which folded(f) holds, in increasing order (scanned in parallel).
+template <class Folded>
+std::vector<int> folded_faces(int nf, const Folded& folded) {
+  std::vector<std::vector<int>> found(32);
+  const std::size_t step = (idx(nf) + found.size() - 1) / found.size();
+  auto scan = [&](std::size_t c) {
+    for (std::size_t f = c * step; f < std::min(idx(nf), (c + 1) * step); ++f)
+      if (folded(as_int(f))) found[c].push_back(as_int(f));
+  };
+  if (idx(nf) < kMinParallel) {
+    for (std::size_t c = 0; c < found.size(); ++c) scan(c);
+  } else {
+    parallel_over(found.size(), 0, scan);
+  }
+  std::vector<int> all;
+  for (const auto& part : found) all.insert(all.end(), part.begin(), part.end());
+  return all;
+}
+
+// revert_folded_faces from the faces folded at the start (`sweep`, in increasing order).
+int revert_from(HalfedgeMesh& m, const std::vector<Vec3>& before, std::vector<int> sweep) {
+  // The rule: sweep the faces in index order, putting back the moved corners of every folded
+  // face, and sweep again until a sweep changes nothing. Sweeping all faces each time was most of
+  // this function's cost on large meshes (two serial passes over 60k faces per call, in every
+  // smoothing step and rollback pass with a fold), so the same sweeps visit only the faces whose
+  // state can have changed, with the same outcome: a face not folded when last visited stays so
+  // until one of its corners is put back. So each sweep visits, in increasing order, the faces
+  // folded at its start (a parallel scan, for the first sweep) or touched by a revert in
+  // the previous sweep, plus the faces of higher index touched by a revert during it (which a
+  // full sweep would reach after the revert). Same reverts, in the same order, as the full sweeps.
+  const int nf = m.num_faces();
+  if (sweep.empty()) return 0;
+  std::vector<std::uint8_t> in_sweep(idx(nf), 0), in_next(idx(nf), 0);
+  for (int f : sweep) in_sweep[idx(f)] = 1;
+  std::vector<int> next;
+  std::greater<int> min_first;
+  std::make_heap(sweep.begin(), sweep.end(), min_first);
+  int reverted = 0;
+  for (;;) {
+    int changed = 0;
+    while (!sweep.empty()) {
+      std::pop_heap(sweep.begin(), sweep.end(), min_first);
+      const int f = sweep.back();
+      sweep.pop_back();
+      in_sweep[idx(f)] = 0;
+      if (!folded_since(m, f, before)) continue;
+      for (int v : m.faces[idx(f)]) {
+        if (m.positions[idx(v)] == before[idx(v)]) continue;
+        m.positions[idx(v)] = before[idx(v)];
+        ++reverted;
+        ++changed;
+        m.for_each_outgoing(v, [&](int h) {
+          const int g = HalfedgeMesh::face_of(h);
+          if (g > f) {
+            if (!in_sweep[idx(g)]) {
+              in_sweep[idx(g)] = 1;
+              sweep.push_back(g);
+              std::push_heap(sweep.begin(), sweep.end(), min_first);
+            }
+          } else if (!in_next[idx(g)]) {
+            in_next[idx(g)] = 1;
+            next.push_back(g);
+          }
+        });
+      }
+    }
+    if (changed == 0) break;
+    // The next sweep: the faces a revert touched after this sweep had visited them (a face
+    // touched before its visit was checked with the new positions).
+    for (int f : next) in_next[idx(f)] = 0;
+    sweep.swap(next);
+    next.clear();
+    for (int f : sweep) in_sweep[idx(f)] = 1;
+    std::make_heap(sweep.begin(), sweep.end(), min_first);
+  }
+  return reverted;
 }
 
 }  // namespace
@@ -116,13 +196,11 @@ std::vector<Vec3> Smoother::next_positions(const HalfedgeMesh& m) {
 int Smoother::step(HalfedgeMesh& m) {
   std::vector<Vec3> before = m.positions;
   m.positions = next_positions(m);
-  // face_normal_ holds the normals before the step: a quick scan finds whether any face folded.
-  std::atomic<bool> folded{false};
-  parallel_ranges(idx(m.num_faces()), kMinParallel, [&](std::size_t b, std::size_t e) {
-    for (std::size_t f = b; f < e && !folded.load(std::memory_order_relaxed); ++f)
-      if (face_folded(face_normal_[f], m.face_normal(as_int(f)), before, m.faces[f], m.positions)) folded = true;
+  // face_normal_ holds the normals before the step (the normals folded_since would compute).
+  std::vector<int> folded = folded_faces(m.num_faces(), [&](int f) {
+    return face_folded(face_normal_[idx(f)], m.face_normal(f), before, m.faces[idx(f)], m.positions);
   });
-  return folded ? revert_folded_faces(m, before) : 0;
+  return folded.empty() ? 0 : revert_from(m, before, std::move(folded));
 }
 
 std::vector<Vec3> smooth_step(const HalfedgeMesh& m, const std::vector<std::uint8_t>& fixed,
@@ -132,37 +210,7 @@ std::vector<Vec3> smooth_step(const HalfedgeMesh& m, const std::vector<std::uint
 }
 
 int revert_folded_faces(HalfedgeMesh& m, const std::vector<Vec3>& before) {
-  int reverted = 0;
-  const int nf = m.num_faces();
-  // The first folded face, found in parallel (usually there is none): the sequential pass below
-  // changes nothing before it, so starting there gives the same result as starting at face 0.
-  std::atomic<int> first{nf};
-  parallel_ranges(idx(nf), kMinParallel, [&](std::size_t b, std::size_t e) {
-    for (std::size_t f = b; f < e && as_int(f) < first.load(std::memory_order_relaxed); ++f) {
-      if (folded_since(m, as_int(f), before)) {
-        int cur = first.load();
-        while (as_int(f) < cur && !first.compare_exchange_weak(cur, as_int(f))) {
-        }
-        break;
-      }
-    }
-  });
-  if (first.load() == nf) return 0;
-  // Ends: every round puts back at least one moved vertex, and none moves again.
-  for (int start = first.load();; start = 0) {
-    int changed = 0;
-    for (int f = start; f < nf; ++f) {
-      if (!folded_since(m, f, before)) continue;
-      for (int v : m.faces[idx(f)])
-        if (m.positions[idx(v)] != before[idx(v)]) {
-          m.positions[idx(v)] = before[idx(v)];
-          ++reverted;
-          ++changed;
-        }
-    }
-    if (changed == 0) break;
-  }
-  return reverted;
+  return revert_from(m, before, folded_faces(m.num_faces(), [&](int f) { return folded_since(m, f, before); }));
 }
 
 }  // namespace ps
