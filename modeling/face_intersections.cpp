@@ -288,9 +288,11 @@ std::vector<std::uint8_t> embedded_fans(const std::vector<Vec3>& pts, const std:
 // grid declines (returns false, nothing visited) when its cost estimate is poor: boxes spanning
 // many cells, or crowded cells (a fine patch in a coarse mesh); the caller then uses CGAL's
 // box intersection. The pairs are the same either way.
+// Without short-circuits: the outcome is close to random in the grid's pair loops, where the
+// branches of && were mispredicted.
 bool boxes_overlap(const CGAL::Bbox_3& a, const CGAL::Bbox_3& b) {
-  return a.xmin() <= b.xmax() && b.xmin() <= a.xmax() && a.ymin() <= b.ymax() && b.ymin() <= a.ymax() &&
-         a.zmin() <= b.zmax() && b.zmin() <= a.zmax();
+  return (a.xmin() <= b.xmax()) & (b.xmin() <= a.xmax()) & (a.ymin() <= b.ymax()) & (b.ymin() <= a.ymax()) &
+         (a.zmin() <= b.zmax()) & (b.zmin() <= a.zmax());
 }
 
 // The cells a box overlaps, lo[k]..hi[k] per axis (inclusive).
@@ -309,6 +311,14 @@ struct CellEntry {
   std::array<std::uint32_t, 3> lo;
   int face;
 };
+
+// The boxes overlap and the cell `at` holds the lowest corner of their intersection (given
+// each box's lowest cell), branch-free for the same reason.
+bool owned_pair(const CGAL::Bbox_3& a, const std::array<std::uint32_t, 3>& a_lo, const CGAL::Bbox_3& b,
+                const std::array<std::uint32_t, 3>& b_lo, const std::array<std::uint32_t, 3>& at) {
+  return boxes_overlap(a, b) & (std::max(a_lo[0], b_lo[0]) == at[0]) & (std::max(a_lo[1], b_lo[1]) == at[1]) &
+         (std::max(a_lo[2], b_lo[2]) == at[2]);
+}
 
 class FaceGrid {
  public:
@@ -400,9 +410,7 @@ class FaceGrid {
           const CellEntry& a = entries[i];
           for (std::size_t j = i + 1; j < run_start[r + 1]; ++j) {
             const CellEntry& b = entries[j];  // a.face < b.face: sorted within a cell
-            if (boxes_overlap(a.box, b.box) && std::max(a.lo[0], b.lo[0]) == at[0] &&
-                std::max(a.lo[1], b.lo[1]) == at[1] && std::max(a.lo[2], b.lo[2]) == at[2])
-              visit(a.face, b.face, c);
+            if (owned_pair(a.box, a.lo, b.box, b.lo, at)) visit(a.face, b.face, c);
           }
         }
       }
@@ -441,8 +449,7 @@ class FaceGrid {
           const std::array<std::uint32_t, 3> at = grid.coords(cell);
           for (std::size_t i = run_start[r]; i < run_start[r + 1]; ++i) {
             const CellEntry& b = entries[i];
-            if (boxes_overlap(boxes[f], b.box) && std::max(rf.lo[0], b.lo[0]) == at[0] &&
-                std::max(rf.lo[1], b.lo[1]) == at[1] && std::max(rf.lo[2], b.lo[2]) == at[2])
+            if (owned_pair(boxes[f], rf.lo, b.box, b.lo, at))
               visit(std::min(static_cast<int>(f), b.face), std::max(static_cast<int>(f), b.face), c);
           }
         });
