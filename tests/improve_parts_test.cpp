@@ -329,6 +329,67 @@ TEST(Smoothing, FoldedFacesAreUndone) {
   EXPECT_EQ(m.positions[3], Vec3(1.01 * before[3]));
 }
 
+// The rule of revert_folded_faces (mesh_smooth.h) as first written: full sweeps over the faces
+// in index order until one changes nothing. The library visits only the faces whose state can
+// have changed; it must make the same reverts in the same order.
+int revert_by_full_sweeps(HalfedgeMesh& m, const std::vector<Vec3>& before) {
+  auto degenerate = [](const Vec3& n, const Face& f, const std::vector<Vec3>& p) {
+    double longest = 0;
+    for (int k = 0; k < 3; ++k)
+      longest = std::max(longest, (p[idx(f[idx(k)])] - p[idx(f[idx((k + 1) % 3)])]).squaredNorm());
+    return !(n.squaredNorm() > 1e-20 * longest * longest);
+  };
+  auto folded = [&](int f) {
+    const Face& fc = m.faces[idx(f)];
+    const Vec3 n0 = (before[idx(fc[1])] - before[idx(fc[0])]).cross(before[idx(fc[2])] - before[idx(fc[0])]);
+    const Vec3 n = m.face_normal(f);
+    if (n.dot(n0) > 0.0 && !degenerate(n, fc, m.positions)) return false;
+    return !degenerate(n0, fc, before);
+  };
+  int reverted = 0;
+  for (;;) {
+    int changed = 0;
+    for (int f = 0; f < m.num_faces(); ++f) {
+      if (!folded(f)) continue;
+      for (int v : m.faces[idx(f)])
+        if (m.positions[idx(v)] != before[idx(v)]) {
+          m.positions[idx(v)] = before[idx(v)];
+          ++reverted;
+          ++changed;
+        }
+    }
+    if (changed == 0) break;
+  }
+  return reverted;
+}
+
+TEST(Smoothing, RevertingFoldsVisitsFewerFacesWithTheSameOutcome) {
+  // Small (serial scan) and large (parallel scan) meshes, moves from harmless to wild.
+  const std::vector<TriMesh> inputs = {icosahedron(), grid_cube(6, 0.2, 3), ps::testing::staircase(28, 120).mesh};
+  int with_reverts = 0;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    auto built = HalfedgeMesh::build(inputs[i]);
+    ASSERT_TRUE(built.is_ok());
+    const HalfedgeMesh start = *built;
+    const double edge = (start.position(start.faces[0][0]) - start.position(start.faces[0][1])).norm();
+    for (unsigned seed = 0; seed < 6; ++seed) {
+      std::mt19937 rng(seed);
+      std::normal_distribution<double> noise(0.0, edge * (0.05 + 0.25 * seed));
+      std::bernoulli_distribution moves(0.6);
+      HalfedgeMesh a = start;
+      for (auto& p : a.positions)
+        if (moves(rng)) p += Vec3(noise(rng), noise(rng), noise(rng));
+      HalfedgeMesh b = a;
+      const int got = revert_folded_faces(a, start.positions);
+      const int want = revert_by_full_sweeps(b, start.positions);
+      EXPECT_EQ(got, want) << "input " << i << " seed " << seed;
+      EXPECT_EQ(a.positions, b.positions) << "input " << i << " seed " << seed;
+      with_reverts += want > 0 ? 1 : 0;
+    }
+  }
+  EXPECT_GE(with_reverts, 10);  // the noise folded faces, so the comparison is not of no-ops
+}
+
 // === Local self-intersection test
 
 TEST(FaceIntersections, CasesOfSharedEdgeSharedVertexAndDisjointFaces) {
