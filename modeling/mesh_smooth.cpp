@@ -1,7 +1,6 @@
 #include "modeling/mesh_smooth.h"
 
 #include <algorithm>
-#include <atomic>
 #include <functional>
 #include <vector>
 
