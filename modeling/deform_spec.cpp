@@ -1,9 +1,6 @@
-// Deformation spec reader (nlohmann_json). The only CGAL use is the polygon-soup reader for
-// check_triangle_mesh_file.
+// Deformation spec reader (nlohmann_json). check_triangle_mesh_file reads the mesh through
+// modeling/mesh_io.h.
 #include "modeling/deform_spec.h"
-
-#include <CGAL/IO/polygon_soup_io.h>
-#include <CGAL/Simple_cartesian.h>
 
 #include <cmath>
 #include <fstream>
@@ -12,6 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
+
+#include "modeling/mesh_io.h"
 
 namespace ps {
 namespace {
@@ -202,16 +201,9 @@ DeformParameters deform_parameters(const DeformSpec& s, std::size_t num_vertices
 }
 
 Status check_triangle_mesh_file(const std::string& path) {
-  using Point = CGAL::Simple_cartesian<double>::Point_3;
-  std::vector<Point> points;
-  std::vector<std::vector<std::size_t>> polygons;
-  bool ok = false;
-  try {
-    ok = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
-  } catch (const std::exception& e) {
-    return Status::error(path + ": cannot parse mesh (" + e.what() + ")");
-  }
-  if (!ok) return Status::error(path + ": cannot parse mesh");
+  auto soup = read_polygon_soup_file(path);
+  if (!soup) return soup.status();
+  const auto& polygons = soup->polygons;
   for (std::size_t f = 0; f < polygons.size(); ++f)
     if (polygons[f].size() != 3)
       return Status::error(path + ": face " + std::to_string(f) + " has " + std::to_string(polygons[f].size()) +

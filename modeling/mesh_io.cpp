@@ -17,6 +17,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "modeling/off_reader.h"
 #include "modeling/polygon_triangulate.h"
 
 namespace ps {
@@ -29,27 +30,57 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-// CGAL 5.5's PLY_reader::init dereferences the last element when a "property" line comes
-// before any "element" line (segfault found by fuzzing): refuse such headers before CGAL reads.
-bool ply_property_before_element(const std::string& path) {
+// Header checks for CGAL 5.5's PLY reader, which crashes on headers it does not expect (both
+// found by fuzzing; the reason is returned, or empty):
+// - PLY_reader::init dereferences the last element when a "property" line comes before any
+//   "element" line;
+// - read_PLY assigns a vertex's x, y and z (and a halfedge's source and target) from the first
+//   property of that name through a dynamic_cast to the type it expects, without checking the
+//   result: "property uchar z" or "property list uchar float x" is a null-pointer call
+//   (UBSan, 2026-12-06). Coordinates must be scalar float or double, halfedge ends scalar uint.
+std::string ply_header_problem(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  std::string line;
+  std::string line, element;
   bool element_seen = false;
+  std::vector<std::string> checked;  // property names already seen in the current element
   for (int n = 0; n < 100000 && std::getline(in, line); ++n) {
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
     if (keyword == "end_header") break;
-    if (keyword == "element") element_seen = true;
-    if (keyword == "property" && !element_seen && n >= 2) return true;
+    if (keyword == "element") {
+      element_seen = true;
+      element.clear();
+      words >> element;
+      checked.clear();
+    }
+    if (keyword != "property" || n < 2) continue;
+    if (!element_seen) return "malformed .ply header: a property before any element";
+    std::string type, name;
+    words >> type;
+    const bool list = type == "list";
+    if (list) {
+      std::string count_type;
+      words >> count_type >> type;
+    }
+    words >> name;
+    if (std::find(checked.begin(), checked.end(), name) != checked.end()) continue;  // CGAL uses the first
+    checked.push_back(name);
+    const bool coordinate = (element == "vertex" || element == "vertices") && (name == "x" || name == "y" || name == "z");
+    const bool halfedge_end = element == "halfedge" && (name == "source" || name == "target");
+    if (coordinate && (list || !(type == "float" || type == "float32" || type == "double" || type == "float64")))
+      return "vertex property " + name + " is " + (list ? "a list" : "of type " + type) +
+             "; coordinates must be float or double";
+    if (halfedge_end && (list || !(type == "uint" || type == "uint32")))
+      return "halfedge property " + name + " is " + (list ? "a list" : "of type " + type) + "; it must be uint";
   }
-  return false;
+  return {};
 }
 
-// CGAL 5.5's OFF and PLY readers size their arrays from counts in the file (OFF header and
-// per-face corner counts, PLY element counts) before reading the data, so a corrupt count makes
-// them allocate and zero gigabytes (found by fuzzing). No count can exceed the file's size in
-// bytes: refuse such files before CGAL reads them. Returns the reason, or empty.
+// CGAL 5.5's PLY reader sizes its arrays from the element counts in the header before reading
+// the data, so a corrupt count makes it allocate and zero gigabytes (found by fuzzing). No count
+// can exceed the file's size in bytes: refuse such files before CGAL reads them. Returns the
+// reason, or empty. (OFF files do not reach CGAL: modeling/off_reader.h says why.)
 std::string implausible_counts(const std::string& path, const std::string& ext) {
   std::error_code ec;
   const auto size = static_cast<long long>(std::filesystem::file_size(path, ec));
@@ -81,41 +112,6 @@ std::string implausible_counts(const std::string& path, const std::string& ext) 
     }
     return {};
   }
-  if (ext != ".off") return {};
-  // ASCII OFF, line by line: header, vertex lines, then face lines starting with a corner count.
-  std::vector<std::string> tokens;
-  auto next_line = [&]() {
-    while (std::getline(in, line)) {
-      if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-      std::istringstream words(line);
-      tokens.clear();
-      for (std::string t; words >> t;) tokens.push_back(t);
-      if (!tokens.empty()) return true;
-    }
-    return false;
-  };
-  if (!next_line()) return {};
-  const std::string& kw = tokens[0];
-  if (kw.size() < 3 || kw.compare(kw.size() - 3, 3, "OFF") != 0) return {};
-  if (tokens.size() > 1 && tokens[1] == "BINARY") return {};
-  std::vector<std::string> counts(tokens.begin() + 1, tokens.end());
-  if (counts.empty()) {
-    if (!next_line()) return {};
-    counts = tokens;
-  }
-  long long nv = 0, nf = 0;
-  if (counts.size() < 2 || !count_ok(counts[0], nv) || !count_ok(counts[1], nf)) return {};
-  if (nv < 0 || nf < 0 || nv > size || nf > size)
-    return "header declares " + counts[0] + " vertices and " + counts[1] + " faces, more than the file's " +
-           std::to_string(size) + " bytes can hold";
-  for (long long i = 0; i < nv; ++i)
-    if (!next_line()) return {};
-  for (long long f = 0; f < nf && next_line(); ++f) {
-    long long corners = 0;
-    if (count_ok(tokens[0], corners) && (corners < 0 || corners > size))
-      return "face " + std::to_string(f) + " declares " + tokens[0] + " corners, more than the file's " +
-             std::to_string(size) + " bytes can hold";
-  }
   return {};
 }
 
@@ -124,6 +120,44 @@ std::string implausible_counts(const std::string& path, const std::string& ext) 
 bool is_mesh_extension(const std::string& path) {
   const std::string e = lower_extension(path);
   return e == ".obj" || e == ".off" || e == ".ply" || e == ".stl";
+}
+
+Result<PolygonSoup> read_polygon_soup_file(const std::string& path) {
+  using R = Result<PolygonSoup>;
+  const std::string ext = lower_extension(path);
+  if (ext == ".off") {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return R::error(path + ": cannot be opened for reading");
+    std::ostringstream content;
+    content << in.rdbuf();
+    auto soup = parse_off(content.str());
+    if (!soup) return R::error(path + ": cannot parse mesh (" + soup.message() + ")");
+    return soup;
+  }
+  if (ext == ".ply")
+    if (const std::string why = ply_header_problem(path); !why.empty())
+      return R::error(path + ": cannot parse mesh (" + why + ")");
+  if (const std::string why = implausible_counts(path, ext); !why.empty())
+    return R::error(path + ": cannot parse mesh (" + why + ")");
+
+  using InPoint = CGAL::Simple_cartesian<double>::Point_3;
+  std::vector<InPoint> points;
+  PolygonSoup soup;
+  bool ok = false;
+  try {
+    ok = CGAL::IO::read_polygon_soup(path, points, soup.polygons, CGAL::parameters::verbose(false));
+  } catch (const std::exception& e) {
+    return R::error(path + ": cannot parse mesh (" + e.what() + ")");
+  }
+  if (!ok) return R::error(path + ": cannot parse mesh (malformed " + ext + " file)");
+  soup.points.reserve(points.size());
+  for (const auto& p : points) soup.points.push_back({p.x(), p.y(), p.z()});
+  for (std::size_t f = 0; f < soup.polygons.size(); ++f)
+    for (std::size_t v : soup.polygons[f])
+      if (v >= points.size())
+        return R::error(path + ": face " + std::to_string(f) + " references vertex " + std::to_string(v) +
+                        " out of range");
+  return soup;
 }
 
 Result<TriMesh> read_mesh(const std::string& path) {
@@ -140,31 +174,19 @@ Result<TriMesh> read_mesh(const std::string& path) {
       return Result<TriMesh>::error(path + ": file is empty");
   }
 
-  if (lower_extension(path) == ".ply" && ply_property_before_element(path))
-    return Result<TriMesh>::error(path + ": cannot parse mesh (malformed .ply header: a property before any element)");
-
-  if (const std::string why = implausible_counts(path, lower_extension(path)); !why.empty())
-    return Result<TriMesh>::error(path + ": cannot parse mesh (" + why + ")");
-
-  using InPoint = CGAL::Simple_cartesian<double>::Point_3;
-  std::vector<InPoint> points;
-  std::vector<std::vector<std::size_t>> polygons;
-  bool ok = false;
-  try {
-    ok = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
-  } catch (const std::exception& e) {
-    return Result<TriMesh>::error(path + ": cannot parse mesh (" + e.what() + ")");
-  }
-  if (!ok) return Result<TriMesh>::error(path + ": cannot parse mesh (malformed " + lower_extension(path) + " file)");
+  auto soup = read_polygon_soup_file(path);
+  if (!soup) return Result<TriMesh>::error(soup.message());
+  const auto& points = soup->points;
+  const auto& polygons = soup->polygons;
   if (polygons.empty()) return Result<TriMesh>::error(path + ": mesh has no faces");
 
   TriMesh mesh;
   mesh.vertices.reserve(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto& p = points[i];
-    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
       return Result<TriMesh>::error(path + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
-    mesh.vertices.emplace_back(p.x(), p.y(), p.z());
+    mesh.vertices.emplace_back(p[0], p[1], p[2]);
   }
   mesh.faces.reserve(polygons.size());
   for (std::size_t fi = 0; fi < polygons.size(); ++fi) {

@@ -2,6 +2,9 @@
 // Mesh input and output: OBJ, OFF, PLY and STL, chosen by the file's extension
 // (case-insensitive), read and written through CGAL's IO.
 //
+// OFF files are read by modeling/off_reader.h (CGAL's OFF scanner has undefined behaviour on
+// negative indices); OBJ, PLY and STL by CGAL.
+//
 // read_mesh refuses, with a message naming the file and what is wrong: a missing or unreadable
 // file, a directory, an unknown extension, a file CGAL cannot parse, no faces, a non-finite
 // coordinate, a face index out of range. Polygons with more than three corners are split into
@@ -12,11 +15,15 @@
 #include <string>
 
 #include "modeling/mesh.h"
+#include "modeling/off_reader.h"
 #include "modeling/status.h"
 
 namespace ps {
 
 Result<TriMesh> read_mesh(const std::string& path);
+// The file's vertices and polygons as stored (no triangulation, no finiteness check); every
+// index in range. Errors name the file.
+Result<PolygonSoup> read_polygon_soup_file(const std::string& path);
 Status write_mesh(const std::string& path, const TriMesh& mesh);
 
 // True when the extension is one write_mesh/read_mesh understands (.obj .off .ply .stl).
