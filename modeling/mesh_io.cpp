@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "modeling/off_reader.h"
+#include "modeling/ply_reader.h"
 #include "modeling/polygon_triangulate.h"
 
 namespace ps {
@@ -30,91 +31,6 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-// Header checks for CGAL 5.5's PLY reader, which crashes on headers it does not expect (both
-// found by fuzzing; the reason is returned, or empty):
-// - PLY_reader::init dereferences the last element when a "property" line comes before any
-//   "element" line;
-// - read_PLY assigns a vertex's x, y and z (and a halfedge's source and target) from the first
-//   property of that name through a dynamic_cast to the type it expects, without checking the
-//   result: "property uchar z" or "property list uchar float x" is a null-pointer call
-//   (UBSan, 2026-12-06). Coordinates must be scalar float or double, halfedge ends scalar uint.
-std::string ply_header_problem(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line, element;
-  bool element_seen = false;
-  std::vector<std::string> checked;  // property names already seen in the current element
-  for (int n = 0; n < 100000 && std::getline(in, line); ++n) {
-    std::istringstream words(line);
-    std::string keyword;
-    words >> keyword;
-    if (keyword == "end_header") break;
-    if (keyword == "element") {
-      element_seen = true;
-      element.clear();
-      words >> element;
-      checked.clear();
-    }
-    if (keyword != "property" || n < 2) continue;
-    if (!element_seen) return "malformed .ply header: a property before any element";
-    std::string type, name;
-    words >> type;
-    const bool list = type == "list";
-    if (list) {
-      std::string count_type;
-      words >> count_type >> type;
-    }
-    words >> name;
-    if (std::find(checked.begin(), checked.end(), name) != checked.end()) continue;  // CGAL uses the first
-    checked.push_back(name);
-    const bool coordinate = (element == "vertex" || element == "vertices") && (name == "x" || name == "y" || name == "z");
-    const bool halfedge_end = element == "halfedge" && (name == "source" || name == "target");
-    if (coordinate && (list || !(type == "float" || type == "float32" || type == "double" || type == "float64")))
-      return "vertex property " + name + " is " + (list ? "a list" : "of type " + type) +
-             "; coordinates must be float or double";
-    if (halfedge_end && (list || !(type == "uint" || type == "uint32")))
-      return "halfedge property " + name + " is " + (list ? "a list" : "of type " + type) + "; it must be uint";
-  }
-  return {};
-}
-
-// CGAL 5.5's PLY reader sizes its arrays from the element counts in the header before reading
-// the data, so a corrupt count makes it allocate and zero gigabytes (found by fuzzing). No count
-// can exceed the file's size in bytes: refuse such files before CGAL reads them. Returns the
-// reason, or empty. (OFF files do not reach CGAL: modeling/off_reader.h says why.)
-std::string implausible_counts(const std::string& path, const std::string& ext) {
-  std::error_code ec;
-  const auto size = static_cast<long long>(std::filesystem::file_size(path, ec));
-  if (ec) return {};
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  // A count as CGAL's readers take it (`stream >> n`): the integer a token starts with, its
-  // trailing characters ignored ("4294967296M" is a face of 4294967296 corners to them; found
-  // by fuzzing, 2026-12-06). A value too large for long long counts as implausible.
-  auto count_ok = [&](const std::string& tok, long long& v) {
-    std::size_t i = tok[0] == '+' || tok[0] == '-' ? 1 : 0;
-    if (i >= tok.size() || !std::isdigit(static_cast<unsigned char>(tok[i]))) return false;
-    try {
-      v = std::stoll(tok);
-    } catch (const std::out_of_range&) {
-      v = std::numeric_limits<long long>::max();
-    }
-    return true;
-  };
-  if (ext == ".ply") {
-    for (int n = 0; n < 100000 && std::getline(in, line); ++n) {
-      std::istringstream words(line);
-      std::string keyword, name, count;
-      words >> keyword;
-      if (keyword == "end_header") break;
-      long long v = 0;
-      if (keyword == "element" && (words >> name >> count) && count_ok(count, v) && (v < 0 || v > size))
-        return "element " + name + " declares " + count + " items, more than the file's " + std::to_string(size) + " bytes can hold";
-    }
-    return {};
-  }
-  return {};
-}
-
 }  // namespace
 
 bool is_mesh_extension(const std::string& path) {
@@ -125,20 +41,15 @@ bool is_mesh_extension(const std::string& path) {
 Result<PolygonSoup> read_polygon_soup_file(const std::string& path) {
   using R = Result<PolygonSoup>;
   const std::string ext = lower_extension(path);
-  if (ext == ".off") {
+  if (ext == ".off" || ext == ".ply") {
     std::ifstream in(path, std::ios::binary);
     if (!in) return R::error(path + ": cannot be opened for reading");
     std::ostringstream content;
     content << in.rdbuf();
-    auto soup = parse_off(content.str());
+    auto soup = ext == ".off" ? parse_off(content.str()) : parse_ply(content.str());
     if (!soup) return R::error(path + ": cannot parse mesh (" + soup.message() + ")");
     return soup;
   }
-  if (ext == ".ply")
-    if (const std::string why = ply_header_problem(path); !why.empty())
-      return R::error(path + ": cannot parse mesh (" + why + ")");
-  if (const std::string why = implausible_counts(path, ext); !why.empty())
-    return R::error(path + ": cannot parse mesh (" + why + ")");
 
   using InPoint = CGAL::Simple_cartesian<double>::Point_3;
   std::vector<InPoint> points;

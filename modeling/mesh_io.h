@@ -2,8 +2,9 @@
 // Mesh input and output: OBJ, OFF, PLY and STL, chosen by the file's extension
 // (case-insensitive), read and written through CGAL's IO.
 //
-// OFF files are read by modeling/off_reader.h (CGAL's OFF scanner has undefined behaviour on
-// negative indices); OBJ, PLY and STL by CGAL.
+// OFF and PLY files are read by modeling/off_reader.h and modeling/ply_reader.h (CGAL 5.5's
+// readers for them crash or allocate without bound on malformed files; the headers say how);
+// OBJ and STL by CGAL.
 //
 // read_mesh refuses, with a message naming the file and what is wrong: a missing or unreadable
 // file, a directory, an unknown extension, a file CGAL cannot parse, no faces, a non-finite
