@@ -10,6 +10,7 @@
 #include <map>
 #include <cstring>
 #include <numeric>
+#include <tbb/global_control.h>
 
 #include "modeling/edge_graph.h"
 #include "modeling/edge_graph_deformer.h"
@@ -408,4 +409,34 @@ TEST(DeformSolver, RefusesBadRegions) {
   TriMesh bad = m;
   bad.faces.push_back(bad.faces[0]);  // a third face on three edges
   EXPECT_FALSE(def.set_mesh(bad));
+}
+
+// === Threads: a region below the solver's serial threshold (5000 nodes; it is then solved on
+// the calling thread alone) and one above it give bit-identical results with one and two
+// threads: the parallel loops write disjoint rows and the reductions are deterministic.
+TEST(DeformSolver, SameBitsWithOneAndTwoThreadsOnBothSidesOfTheSerialThreshold) {
+  LOAD_OR_SKIP(m, "elephant.off");
+  const double d = diagonal(m);
+  bool saw_small = false, saw_large = false;
+  for (double radius : {0.15, 0.9}) {
+    const auto s = make_scenario(m, 100, radius * d, 0.05 * d, lift(Vec3(0.05 * d, 0.03 * d, 0.01 * d)));
+    std::vector<Vec3> result[2];
+    for (int threads : {1, 2}) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+      DeformParameters p;
+      p.lambda = 0.5;
+      EdgeGraphDeformer def;
+      ASSERT_TRUE(def.set_mesh(m));
+      ASSERT_TRUE(def.set_region(s.roi, s.handles, p));
+      ASSERT_TRUE(def.deform(s.targets));
+      ASSERT_TRUE(def.drag(s.targets, 2));
+      (def.stats().nodes < 5000 ? saw_small : saw_large) = true;
+      result[threads - 1] = def.vertices();
+    }
+    ASSERT_EQ(result[0].size(), result[1].size());
+    for (std::size_t v = 0; v < result[0].size(); ++v)
+      ASSERT_EQ(std::memcmp(result[0][v].data(), result[1][v].data(), sizeof(double) * 3), 0) << "radius " << radius << ", vertex " << v;
+  }
+  EXPECT_TRUE(saw_small);
+  EXPECT_TRUE(saw_large);
 }
