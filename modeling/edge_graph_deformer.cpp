@@ -5,7 +5,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -195,26 +194,6 @@ struct EdgeGraphDeformer::Impl {
   DeformStats stats;
 
   int rows() const { return static_cast<int>(arc_v.size() + nodes.size()); }
-
-  // === Thread policy
-  // A region of fewer than kSerialNodes nodes is solved on the calling thread alone: its
-  // parallel loops are too short to pay for the hand-overs, and TBB's workers spin between
-  // them. Measured with bench/deform_bench on the 2-core machine (2026-12-06, medians of 7):
-  // elephant, 900-vertex ROI (2796 nodes), lambda 0.5: 13.4 ms with two threads, 10.5 ms with
-  // one; dino, 2.8k-vertex ROI (about 8.4k nodes): 24.8 ms with two, 30.0 ms with one. The
-  // threshold lies between the two (nearer the geometric mean, about 4.8k). The results are
-  // identical either way: the loops write disjoint rows and the reductions are deterministic.
-  static constexpr std::size_t kSerialNodes = 5000;
-  tbb::task_arena one_thread{1};
-  template <class F>
-  Status sized(const F& f) {
-#if defined(__SANITIZE_THREAD__)
-    return f();  // parallel_over's std::threads there, whatever the arena
-#else
-    if (nodes.size() >= kSerialNodes) return f();
-    return one_thread.execute(f);
-#endif
-  }
 
   const DeformGraph& graph(DeformDomain d) {
     const int k = d == DeformDomain::kEdgeGraph ? 0 : 1;
@@ -829,73 +808,69 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
 
 Status EdgeGraphDeformer::deform(const std::vector<Vec3>& targets) {
   Impl& s = *impl_;
-  return s.sized([&]() -> Status {
-    const auto t0 = Clock::now();
-    if (Status ok = s.place_handles(targets); !ok) return ok;
-    s.stats.iteration_ms.clear();
-    s.stats.energies.clear();
-    s.stats.converged = false;
-    s.stats.iterations = 0;
-    // === Initial guess: naive Laplacian editing (identity transforms).
-    s.t = s.t_rest;
-    s.rot.assign(s.nodes.size(), Eigen::Quaterniond::Identity());
+  const auto t0 = Clock::now();
+  if (Status ok = s.place_handles(targets); !ok) return ok;
+  s.stats.iteration_ms.clear();
+  s.stats.energies.clear();
+  s.stats.converged = false;
+  s.stats.iterations = 0;
+  // === Initial guess: naive Laplacian editing (identity transforms).
+  s.t = s.t_rest;
+  s.rot.assign(s.nodes.size(), Eigen::Quaterniond::Identity());
+  s.global_step();
+  s.stats.initial_solve_ms = ms_since(t0);
+  double e_prev = s.energy();
+  s.stats.energies.push_back(e_prev);
+  // === Local/global iterations until the relative energy change is below the tolerance.
+  // The energy checked is the one at the start of each iteration with its new transforms,
+  // E(x_{k-1}, R_k), which the local step computes for free; for lambda = 1 the sequence is
+  // non-increasing. The last entry is the exact energy of the result.
+  s.stats.local_ms = s.stats.solve_ms = s.stats.energy_ms = 0;
+  for (int it = 0; it < s.params.max_iterations; ++it) {
+    const auto ti = Clock::now();
+    const double e = s.local_step();
+    const auto tl = Clock::now();
     s.global_step();
-    s.stats.initial_solve_ms = ms_since(t0);
-    double e_prev = s.energy();
-    s.stats.energies.push_back(e_prev);
-    // === Local/global iterations until the relative energy change is below the tolerance.
-    // The energy checked is the one at the start of each iteration with its new transforms,
-    // E(x_{k-1}, R_k), which the local step computes for free; for lambda = 1 the sequence is
-    // non-increasing. The last entry is the exact energy of the result.
-    s.stats.local_ms = s.stats.solve_ms = s.stats.energy_ms = 0;
-    for (int it = 0; it < s.params.max_iterations; ++it) {
-      const auto ti = Clock::now();
-      const double e = s.local_step();
-      const auto tl = Clock::now();
-      s.global_step();
-      s.stats.local_ms += std::chrono::duration<double, std::milli>(tl - ti).count();
-      s.stats.solve_ms += ms_since(tl);
-      s.stats.iteration_ms.push_back(ms_since(ti));
-      s.stats.energies.push_back(e);
-      ++s.stats.iterations;
-      const double rel = std::abs(e_prev - e) / std::max(e_prev, 1e-300);
-      e_prev = e;
-      if (rel < s.params.tolerance) {
-        s.stats.converged = true;
-        break;
-      }
+    s.stats.local_ms += std::chrono::duration<double, std::milli>(tl - ti).count();
+    s.stats.solve_ms += ms_since(tl);
+    s.stats.iteration_ms.push_back(ms_since(ti));
+    s.stats.energies.push_back(e);
+    ++s.stats.iterations;
+    const double rel = std::abs(e_prev - e) / std::max(e_prev, 1e-300);
+    e_prev = e;
+    if (rel < s.params.tolerance) {
+      s.stats.converged = true;
+      break;
     }
-    if (s.params.max_iterations > 0) {
-      const auto te = Clock::now();
-      s.stats.energies.push_back(s.energy());
-      s.stats.energy_ms = ms_since(te);
-    }
-    s.write_back(targets);
-    s.stats.total_ms = ms_since(t0);
-    return Status::ok();
-  });
+  }
+  if (s.params.max_iterations > 0) {
+    const auto te = Clock::now();
+    s.stats.energies.push_back(s.energy());
+    s.stats.energy_ms = ms_since(te);
+  }
+  s.write_back(targets);
+  s.stats.total_ms = ms_since(t0);
+  return Status::ok();
 }
 
 Status EdgeGraphDeformer::drag(const std::vector<Vec3>& targets, int iterations) {
   Impl& s = *impl_;
-  return s.sized([&]() -> Status {
-    const auto t0 = Clock::now();
-    if (Status ok = s.place_handles(targets); !ok) return ok;
-    s.stats.iteration_ms.clear();
-    s.stats.energies.clear();
-    s.stats.iterations = 0;
-    s.stats.initial_solve_ms = 0;
-    for (int it = 0; it < std::max(iterations, 1); ++it) {
-      const auto ti = Clock::now();
-      s.local_step();
-      s.global_step();
-      s.stats.iteration_ms.push_back(ms_since(ti));
-      ++s.stats.iterations;
-    }
-    s.write_back(targets);
-    s.stats.total_ms = ms_since(t0);
-    return Status::ok();
-  });
+  const auto t0 = Clock::now();
+  if (Status ok = s.place_handles(targets); !ok) return ok;
+  s.stats.iteration_ms.clear();
+  s.stats.energies.clear();
+  s.stats.iterations = 0;
+  s.stats.initial_solve_ms = 0;
+  for (int it = 0; it < std::max(iterations, 1); ++it) {
+    const auto ti = Clock::now();
+    s.local_step();
+    s.global_step();
+    s.stats.iteration_ms.push_back(ms_since(ti));
+    ++s.stats.iterations;
+  }
+  s.write_back(targets);
+  s.stats.total_ms = ms_since(t0);
+  return Status::ok();
 }
 
 const std::vector<Vec3>& EdgeGraphDeformer::vertices() const { return impl_->current; }

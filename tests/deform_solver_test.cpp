@@ -411,10 +411,10 @@ TEST(DeformSolver, RefusesBadRegions) {
   EXPECT_FALSE(def.set_mesh(bad));
 }
 
-// === Threads: a region below the solver's serial threshold (5000 nodes; it is then solved on
-// the calling thread alone) and one above it give bit-identical results with one and two
-// threads: the parallel loops write disjoint rows and the reductions are deterministic.
-TEST(DeformSolver, SameBitsWithOneAndTwoThreadsOnBothSidesOfTheSerialThreshold) {
+// === Threads: a small region (under 5000 graph nodes) and a large one give bit-identical
+// results with one and two threads: the parallel loops write disjoint rows and the reductions
+// are deterministic (parallel_deterministic_reduce).
+TEST(DeformSolver, SameBitsWithOneAndTwoThreads) {
   LOAD_OR_SKIP(m, "elephant.off");
   const double d = diagonal(m);
   bool saw_small = false, saw_large = false;
