@@ -1,13 +1,13 @@
 #pragma once
 // Mesh input and output: OBJ, OFF, PLY and STL, chosen by the file's extension
-// (case-insensitive), read and written through CGAL's IO.
+// (case-insensitive), written through CGAL's IO.
 //
 // OFF and PLY files are read by modeling/off_reader.h and modeling/ply_reader.h (CGAL 5.5's
 // readers for them crash or allocate without bound on malformed files; the headers say how);
 // OBJ and STL by CGAL.
 //
 // read_mesh refuses, with a message naming the file and what is wrong: a missing or unreadable
-// file, a directory, an unknown extension, a file CGAL cannot parse, no faces, a non-finite
+// file, a directory, an unknown extension, a file that cannot be parsed, no faces, a non-finite
 // coordinate, a face index out of range. Polygons with more than three corners are split into
 // triangles (ear clipping in the polygon's best-fit plane).
 //

@@ -1,55 +1,35 @@
 #include "modeling/off_reader.h"
 
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string_view>
 
+#include "modeling/text_tokens.h"
+
 namespace ps {
 namespace {
 
-// === Tokens
-
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-
-// A number as the whole token; a leading '+' allowed (from_chars refuses it).
-bool parse_double(std::string_view tok, double& v) {
-  if (!tok.empty() && tok[0] == '+') tok.remove_prefix(1);
-  if (tok.empty()) return false;
-  const auto [end, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
-  return ec == std::errc() && end == tok.data() + tok.size();
-}
-
-// The token in quotes, cut at 40 characters. (Built by appending: GCC 12 reports a false
-// -Wrestrict on "'" + std::string(tok) at -O3.)
-std::string quoted(std::string_view tok) {
-  std::string q;
-  q.reserve(42);
-  q.push_back('\'');
-  q.append(tok.substr(0, 40));
-  q.push_back('\'');
-  return q;
-}
+// === Tokens (modeling/text_tokens.h)
 
 // A non-negative integer (written as an integer or an integral decimal, "3" or "3.0") no larger
 // than `limit`. Returns false, and leaves the reason in `why`, otherwise.
 bool parse_count(std::string_view tok, long long limit, long long& v, std::string& why) {
   double d = 0;
   if (!parse_double(tok, d)) {
-    why = quoted(tok) + " is not a number";
+    why = show(tok) + " is not a number";
     return false;
   }
   if (!std::isfinite(d) || d != std::floor(d)) {
-    why = quoted(tok) + " is not an integer";
+    why = show(tok) + " is not an integer";
     return false;
   }
   if (d < 0) {
-    why = quoted(tok) + " is negative";
+    why = show(tok) + " is negative";
     return false;
   }
   if (d > static_cast<double>(limit)) {
-    why = quoted(tok) + " is larger than " + std::to_string(limit);
+    why = show(tok) + " is larger than " + std::to_string(limit);
     return false;
   }
   v = static_cast<long long>(d);
@@ -68,14 +48,7 @@ class Lines {
       pos_ = end + 1;
       ++number_;
       if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-      tokens_.clear();
-      std::size_t i = 0;
-      while (i < line.size()) {
-        while (i < line.size() && is_space(line[i])) ++i;
-        const std::size_t start = i;
-        while (i < line.size() && !is_space(line[i])) ++i;
-        if (i > start) tokens_.push_back(line.substr(start, i - start));
-      }
+      split(line, tokens_);
       if (!tokens_.empty()) return true;
     }
     return false;
@@ -186,14 +159,14 @@ Result<PolygonSoup> parse_off(const std::string& content) {
   if (!lines.next()) return R::error("no OFF header (the file holds only blanks or comments)");
   const std::string_view keyword = lines.tokens()[0];
   if (keyword.size() < 3 || keyword.substr(keyword.size() - 3) != "OFF")
-    return R::error(lines.where() + ": expected the OFF keyword, found " + quoted(keyword));
+    return R::error(lines.where() + ": expected the OFF keyword, found " + show(keyword));
   const std::string_view prefix = keyword.substr(0, keyword.size() - 3);
   bool homogeneous = false;
   for (char c : prefix) {
     if (c == 'n') return R::error("nOFF (vertices of a dimension given in the file) is not supported");
     if (c == '4') homogeneous = true;
     else if (c != 'S' && c != 'T' && c != 'C' && c != 'N')
-      return R::error(lines.where() + ": unknown OFF keyword " + quoted(keyword));
+      return R::error(lines.where() + ": unknown OFF keyword " + show(keyword));
   }
   std::vector<std::string_view> counts(lines.tokens().begin() + 1, lines.tokens().end());
   if (!counts.empty() && counts[0] == "BINARY") {
@@ -222,7 +195,7 @@ Result<PolygonSoup> parse_off(const std::string& content) {
     for (std::size_t k = 0; k < needed; ++k)
       if (k >= t.size() || !parse_double(t[k], c[k]))
         return R::error(lines.where() + ": vertex " + std::to_string(i) + " needs " + std::to_string(needed) +
-                        " coordinates" + (k < t.size() ? ", found " + quoted(t[k]) : ""));
+                        " coordinates" + (k < t.size() ? ", found " + show(t[k]) : ""));
     if (homogeneous) {
       if (c[3] == 0) return R::error(lines.where() + ": vertex " + std::to_string(i) + " has w = 0");
       for (int k = 0; k < 3; ++k) c[k] /= c[3];

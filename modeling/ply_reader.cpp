@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -11,6 +10,8 @@
 #include <memory>
 #include <string_view>
 #include <vector>
+
+#include "modeling/text_tokens.h"
 
 namespace ps {
 namespace {
@@ -64,22 +65,11 @@ struct Element {
   std::vector<Property> properties;
 };
 
-std::vector<std::string_view> words(std::string_view line) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
-    if (i > start) out.push_back(line.substr(start, i - start));
-  }
-  return out;
-}
-
+// A name from the header, cut at 40 characters, for messages (show() quotes a token instead).
 std::string cut(std::string_view s) { return std::string(s.substr(0, 40)); }
 
 // A value as it was most likely written: integers without a decimal point.
-std::string show(double v) {
+std::string show_number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
@@ -108,12 +98,9 @@ class AsciiBody final : public Body {
     const std::size_t start = pos_;
     while (pos_ < text_.size() && !is_space(text_[pos_])) ++pos_;
     if (pos_ == start) return false;
-    std::string_view tok = text_.substr(start, pos_ - start);
-    if (tok[0] == '+') tok.remove_prefix(1);
-    if (tok.empty()) return false;
-    const auto [end, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
-    if (ec != std::errc() || end != tok.data() + tok.size()) {
-      bad_ = cut(tok);
+    const std::string_view tok = text_.substr(start, pos_ - start);
+    if (!parse_double(tok, v)) {
+      bad_ = show(tok);
       return false;
     }
     // A float property holds what a float can, as in a binary file (and CGAL's reader); beyond
@@ -129,7 +116,7 @@ class AsciiBody final : public Body {
     return count <= static_cast<double>(text_.size() - std::min(pos_, text_.size())) / 2.0 + 1.0;
   }
   std::string where() const override {
-    return "body line " + std::to_string(line_) + (bad_.empty() ? "" : " ('" + bad_ + "' is not a number)");
+    return "body line " + std::to_string(line_) + (bad_.empty() ? "" : " (" + bad_ + " is not a number)");
   }
 
  private:
@@ -200,13 +187,13 @@ Result<PolygonSoup> parse_ply(const std::string& content) {
     return true;
   };
   std::string_view line;
-  if (!next_line(line) || words(line).size() != 1 || words(line)[0] != "ply")
+  if (!next_line(line) || split(line).size() != 1 || split(line)[0] != "ply")
     return R::error("not a PLY file (the first line is not 'ply')");
   enum class Format { none, ascii, little, big } format = Format::none;
   std::vector<Element> elements;
   bool ended = false;
   while (!ended && next_line(line)) {
-    const auto w = words(line);
+    const auto w = split(line);
     const std::string at = "header line " + std::to_string(line_no);
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
     if (w[0] == "end_header") {
@@ -216,13 +203,12 @@ Result<PolygonSoup> parse_ply(const std::string& content) {
       if (w[1] == "ascii") format = Format::ascii;
       else if (w[1] == "binary_little_endian") format = Format::little;
       else if (w[1] == "binary_big_endian") format = Format::big;
-      else return R::error(at + ": unknown format '" + cut(w[1]) + "'");
+      else return R::error(at + ": unknown format " + show(w[1]));
     } else if (w[0] == "element") {
       if (w.size() != 3) return R::error(at + ": expected 'element <name> <count>'");
       long long count = -1;
-      const auto [end, ec] = std::from_chars(w[2].data(), w[2].data() + w[2].size(), count);
-      if (ec != std::errc() || end != w[2].data() + w[2].size() || count < 0)
-        return R::error(at + ": element " + cut(w[1]) + " has count '" + cut(w[2]) + "', not a non-negative integer");
+      if (!parse_int(w[2], count) || count < 0)
+        return R::error(at + ": element " + cut(w[1]) + " has count " + show(w[2]) + ", not a non-negative integer");
       // No element can have more items than the file has bytes.
       if (count > static_cast<long long>(text.size()))
         return R::error(at + ": element " + cut(w[1]) + " declares " + cut(w[2]) + " items, more than the file's " +
@@ -238,14 +224,14 @@ Result<PolygonSoup> parse_ply(const std::string& content) {
         if (!is_integer_type(p.count_type)) return R::error(at + ": a list count of type " + cut(w[2]) + ", not an integer type");
         p.name = std::string(w[4]);
       } else if (w.size() == 3) {
-        if (!scalar_type(w[1], p.type)) return R::error(at + ": unknown property type '" + cut(w[1]) + "'");
+        if (!scalar_type(w[1], p.type)) return R::error(at + ": unknown property type " + show(w[1]));
         p.name = std::string(w[2]);
       } else {
         return R::error(at + ": expected 'property <type> <name>' or 'property list <type> <type> <name>'");
       }
       elements.back().properties.push_back(std::move(p));
     } else {
-      return R::error(at + ": unknown header keyword '" + cut(w[0]) + "'");
+      return R::error(at + ": unknown header keyword " + show(w[0]));
     }
   }
   if (!ended) return R::error("the header has no end_header line");
@@ -282,17 +268,17 @@ Result<PolygonSoup> parse_ply(const std::string& content) {
     const bool is_vertex = &e == vertex_element;
     const bool is_face = e.name == "face" || e.name == "faces";
     if (is_vertex) soup.points.reserve(static_cast<std::size_t>(e.count));
-    bool face_list_taken = false;
     for (long long item = 0; item < e.count; ++item) {
-      const std::string at = "element " + cut(e.name) + " item " + std::to_string(item);
+      // Built only for a message: this loop runs once per vertex and face.
+      const auto at = [&] { return "element " + cut(e.name) + " item " + std::to_string(item); };
       std::array<double, 3> xyz = {0, 0, 0};
       std::array<bool, 3> xyz_set = {false, false, false};
-      face_list_taken = false;
+      bool face_list_taken = false;
       for (const auto& p : e.properties) {
         if (!p.list) {
           double v = 0;
           if (!body->number(p.type, v))
-            return R::error("the body ends or is malformed in " + at + ", property " + cut(p.name) + " (" + body->where() + ")");
+            return R::error("the body ends or is malformed in " + at() + ", property " + cut(p.name) + " (" + body->where() + ")");
           if (is_vertex)
             for (std::size_t k = 0; k < 3; ++k)
               if (!xyz_set[k] && p.name.size() == 1 && p.name[0] == "xyz"[k]) {
@@ -303,24 +289,24 @@ Result<PolygonSoup> parse_ply(const std::string& content) {
         }
         double n = 0;
         if (!body->number(p.count_type, n))
-          return R::error("the body ends or is malformed in " + at + ", list " + cut(p.name) + " (" + body->where() + ")");
+          return R::error("the body ends or is malformed in " + at() + ", list " + cut(p.name) + " (" + body->where() + ")");
         if (!is_index(n) || !body->can_hold(n, p.type))
-          return R::error(at + ": list " + cut(p.name) + " declares " + show(n) +
+          return R::error(at() + ": list " + cut(p.name) + " declares " + show_number(n) +
                           " values, more than the rest of the file can hold (" + body->where() + ")");
         const bool indices = is_face && !face_list_taken && (p.name == "vertex_indices" || p.name == "vertex_index");
         std::vector<std::size_t> poly;
         if (indices) {
           face_list_taken = true;
-          if (!is_integer_type(p.type)) return R::error(at + ": vertex indices of a floating-point type");
-          if (n < 3) return R::error(at + " has " + std::to_string(static_cast<long long>(n)) + " corners (at least 3 needed)");
+          if (!is_integer_type(p.type)) return R::error(at() + ": vertex indices of a floating-point type");
+          if (n < 3) return R::error(at() + " has " + std::to_string(static_cast<long long>(n)) + " corners (at least 3 needed)");
           poly.reserve(static_cast<std::size_t>(n));
         }
         for (double k = 0; k < n; ++k) {
           double v = 0;
           if (!body->number(p.type, v))
-            return R::error("the body ends or is malformed in " + at + ", list " + cut(p.name) + " (" + body->where() + ")");
+            return R::error("the body ends or is malformed in " + at() + ", list " + cut(p.name) + " (" + body->where() + ")");
           if (indices) {
-            if (!is_index(v)) return R::error(at + ": vertex index " + show(v) + " is negative or not an integer");
+            if (!is_index(v)) return R::error(at() + ": vertex index " + show_number(v) + " is negative or not an integer");
             poly.push_back(static_cast<std::size_t>(v));
           }
         }
