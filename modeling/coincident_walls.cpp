@@ -9,7 +9,8 @@
 
 namespace ps::exact {
 
-int align_coincident_walls(std::vector<SurfaceMesh>& meshes, const std::vector<SnappedSolid>& solids, double tol) {
+int align_coincident_walls(std::vector<SurfaceMesh>& meshes, const std::vector<SnappedSolid>& solids, double tol,
+                           std::vector<char>* kept) {
   int changes = 0;
   auto untagged = [&](std::size_t m, SurfaceMesh::Vertex_index v) {
     const auto& tags = solids[m].tags;
@@ -91,9 +92,14 @@ int align_coincident_walls(std::vector<SurfaceMesh>& meshes, const std::vector<S
       ++changes;
     }
   }
-  for (std::size_t m = 0; m < meshes.size(); ++m)
-    if (changed[m] && (!unusable_operand(meshes[m]).empty() || CGAL::Polygon_mesh_processing::does_self_intersect(meshes[m])))
+  if (kept) kept->assign(meshes.size(), 0);
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    if (!changed[m]) continue;
+    if (!unusable_operand(meshes[m]).empty() || CGAL::Polygon_mesh_processing::does_self_intersect(meshes[m]))
       meshes[m] = std::move(original[m]);
+    else if (kept)
+      (*kept)[m] = 1;
+  }
   return changes;
 }
 

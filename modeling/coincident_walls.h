@@ -20,12 +20,15 @@
 // caps must keep matching the neighbouring zone's), and only wall edges flip (an edge or new
 // diagonal with an untagged end). meshes[i] is solids[i] snapped (exact_snap.h), vertex for
 // vertex. Returns the number of points moved and edges flipped (0: meshes unchanged).
+// `kept` (optional) receives, per mesh, 1 when the mesh was changed and kept: it was then
+// checked here to be usable and free of self-intersections (exact tests).
 #include <vector>
 
 #include "modeling/exact_snap.h"
 
 namespace ps::exact {
 
-int align_coincident_walls(std::vector<SurfaceMesh>& meshes, const std::vector<SnappedSolid>& solids, double tol);
+int align_coincident_walls(std::vector<SurfaceMesh>& meshes, const std::vector<SnappedSolid>& solids, double tol,
+                           std::vector<char>* kept = nullptr);
 
 }  // namespace ps::exact

@@ -46,7 +46,7 @@ std::vector<std::vector<int>> neighbours(const TriMesh& m) {
 }  // namespace
 
 std::vector<SnappedSolid> with_frustum_connectors(const std::vector<SnappedSolid>& frusta, const std::vector<Plane>& planes,
-                                                  int* added) {
+                                                  int* added, PairUnionMemo* memo) {
   const std::size_t nf = frusta.size();
   std::vector<std::vector<std::vector<int>>> adj(nf);
   std::vector<int> half(nf, 0);
@@ -78,7 +78,7 @@ std::vector<SnappedSolid> with_frustum_connectors(const std::vector<SnappedSolid
     // Only a pair whose own union is refused gets connectors: each connector is one more
     // operand with exactly coplanar contacts, the configuration CGAL 5.5's corefinement is
     // least robust on (a connector added to a pair that did not need one crashed it).
-    if (union_snapped_solids({A, B}, planes)) continue;
+    if (memo ? memo->unites(A, B) : static_cast<bool>(union_snapped_solids({A, B}, planes))) continue;
     std::vector<SnappedSolid> pair_connectors;
     const auto& adj_a = adj[uz(ab.first)];
     const auto& adj_b = adj[uz(ab.second)];

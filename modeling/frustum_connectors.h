@@ -22,6 +22,7 @@
 // succeed without them keep their exact previous result.
 #include <vector>
 
+#include "modeling/pair_union_memo.h"
 #include "modeling/zone_union.h"
 
 namespace ps {
@@ -34,8 +35,9 @@ namespace ps {
 // each frustum's vertices (frustum_builder's layout). Runs whose hull is flat are skipped.
 // Only pairs whose own union (union_snapped_solids on `planes`) is refused get connectors, and
 // only when the pair's union with them is valid. `added` (optional) receives the number of
-// connectors.
+// connectors. `memo` (optional) answers the pairs' own unions from earlier requests
+// (pair_union_memo.h); it must be built on the same `planes`.
 std::vector<SnappedSolid> with_frustum_connectors(const std::vector<SnappedSolid>& frusta, const std::vector<Plane>& planes,
-                                                  int* added = nullptr);
+                                                  int* added = nullptr, PairUnionMemo* memo = nullptr);
 
 }  // namespace ps

@@ -58,7 +58,7 @@ bool nudge(SnappedSolid& s, const std::vector<std::size_t>& bottoms, const Plane
 }  // namespace
 
 std::vector<SnappedSolid> with_overlap_nudges(const std::vector<SnappedSolid>& frusta, const std::vector<Plane>& planes,
-                                              int* nudged) {
+                                              int* nudged, PairUnionMemo* memo) {
   std::vector<SnappedSolid> out = frusta;
   int count = 0;
   Box3 box;
@@ -75,7 +75,8 @@ std::vector<SnappedSolid> with_overlap_nudges(const std::vector<SnappedSolid>& f
       const auto si = shared_bottoms(out[i], out[j], pj, tol);
       const auto sj = shared_bottoms(out[j], out[i], pi, tol);
       if (si.empty() || sj.empty()) continue;
-      if (union_snapped_solids({out[i], out[j]}, planes)) continue;  // this pair is fine
+      const bool fine = memo ? memo->unites(out[i], out[j]) : static_cast<bool>(union_snapped_solids({out[i], out[j]}, planes));
+      if (fine) continue;  // this pair is fine
       for (double fraction : {0.02, 0.05}) {
         SnappedSolid a = out[i], b = out[j];
         const bool ma = nudge(a, si, planes[static_cast<std::size_t>(pj)], fraction);

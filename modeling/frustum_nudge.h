@@ -19,6 +19,7 @@
 // union is refused and becomes valid with the nudge (fractions 0.02, then 0.05).
 #include <vector>
 
+#include "modeling/pair_union_memo.h"
 #include "modeling/zone_union.h"
 
 namespace ps {
@@ -28,8 +29,10 @@ namespace ps {
 // coordinates within 1e-9 of the frusta's diagonal (tagged points are made exact on their
 // planes before the union, so equal tags are one point). Frustum layout: bottoms are the
 // first half of the vertices, vertex i + n/2 is the top of bottom vertex i (frustum_builder).
-// `nudged` (optional) receives the number of pairs changed.
+// `nudged` (optional) receives the number of pairs changed. `memo` (optional) answers the
+// unions of pairs as they are from earlier requests (pair_union_memo.h); it must be built on
+// the same `planes`.
 std::vector<SnappedSolid> with_overlap_nudges(const std::vector<SnappedSolid>& frusta, const std::vector<Plane>& planes,
-                                              int* nudged = nullptr);
+                                              int* nudged = nullptr, PairUnionMemo* memo = nullptr);
 
 }  // namespace ps

@@ -6,6 +6,7 @@
 
 #include "modeling/coincident_walls.h"
 #include "modeling/exact_snap.h"
+#include "modeling/snapped_self_intersection.h"
 
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -17,6 +18,7 @@
 
 #include "modeling/face_intersections.h"
 #include "modeling/mesh_topology.h"
+#include "modeling/pair_union_memo.h"
 #include "modeling/zone_stitch.h"
 
 namespace ps {
@@ -292,7 +294,18 @@ Result<TriMesh> union_snapped_solids(const std::vector<SnappedSolid>& solids, co
   std::vector<SurfaceMesh> snapped;
   snapped.reserve(n);
   for (std::size_t i = 0; i < n; ++i) snapped.push_back(to_surface_mesh(solids[i], planes));
-  exact::align_coincident_walls(snapped, solids, 1e-14 * diag);
+  std::vector<char> aligned;  // per frustum: changed by the alignment, and checked by it
+  exact::align_coincident_walls(snapped, solids, 1e-14 * diag, &aligned);
+  // Self-intersection verdicts of frusta as they were given (pair_union_memo.h): the same
+  // frusta come back in many unions of one zone. Per thread: zones run in parallel.
+  thread_local SolidVerdicts self_intersecting;
+  // Every snapped point evaluated exactly now. Lazy exact points tighten their interval
+  // approximations when evaluated, and corefinement's box sweep orders its work by those
+  // intervals: without this, whether the self-intersection test below ran (or was answered
+  // from the memo, or took its 2D path) would change the numbering and triangulation of the
+  // union. Evaluated here, the union depends only on the frusta.
+  for (auto& sm : snapped)
+    for (auto v : sm.vertices()) CGAL::exact(sm.point(v));
   TriMesh out;
   for (std::size_t root = 0; root < n; ++root) {
     if (find(root) != root) continue;
@@ -309,8 +322,16 @@ Result<TriMesh> union_snapped_solids(const std::vector<SnappedSolid>& solids, co
         return Result<TriMesh>::error("frustum " + std::to_string(i) + " is degenerate after snapping");
       // Corefinement's input must not intersect itself (it crashed on a real data set where
       // snapping made a frustum checked in doubles touch itself); exact test, small meshes.
-      if (PMP::does_self_intersect(level.back()))
-        return Result<TriMesh>::error("frustum " + std::to_string(i) + " intersects itself after snapping");
+      // A frustum the alignment changed and kept was tested there.
+      if (!aligned[i]) {
+        int verdict = self_intersecting.find(solids[i], planes);
+        if (verdict < 0) {
+          verdict = exact::snapped_self_intersects(level.back(), solids[i].tags, planes) ? 1 : 0;
+          self_intersecting.add(solids[i], planes, verdict != 0);
+        }
+        if (verdict != 0)
+          return Result<TriMesh>::error("frustum " + std::to_string(i) + " intersects itself after snapping");
+      }
     }
     while (level.size() > 1) {
       std::vector<SurfaceMesh> next;

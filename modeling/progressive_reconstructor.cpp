@@ -20,6 +20,7 @@
 #include "modeling/frustum_builder.h"
 #include "modeling/frustum_connectors.h"
 #include "modeling/frustum_nudge.h"
+#include "modeling/pair_union_memo.h"
 #include "modeling/polyhedral_partition.h"
 #include "modeling/mesh_topology.h"
 #include "modeling/nef_union.h"
@@ -361,11 +362,13 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       // reversed (fixed orders: deterministic).
       const auto& fz = (*frusta)[z].solids;
       auto u = union_snapped_solids(fz, part->planes);
+      // Connectors and nudges both ask about the unions of the same pairs of frusta.
+      PairUnionMemo pair_unions(part->planes);
       // Frusta meeting on a zone edge may bound an empty wedge there (frustum_connectors.h):
       // fill it, then try the other orders.
       if (!u && fz.size() > 1) {
         int connectors = 0;
-        const std::vector<SnappedSolid> with = with_frustum_connectors(fz, part->planes, &connectors);
+        const std::vector<SnappedSolid> with = with_frustum_connectors(fz, part->planes, &connectors, &pair_unions);
         if (connectors > 0)
           if (auto c = union_snapped_solids(with, part->planes)) u = std::move(c);
       }
@@ -373,7 +376,7 @@ Result<TriMesh> reconstruct_polyhedral(const ValidatedSections& vs, const Box3& 
       // the walls into each other.
       if (!u && fz.size() > 1) {
         int nudged = 0;
-        const std::vector<SnappedSolid> leaned = with_overlap_nudges(fz, part->planes, &nudged);
+        const std::vector<SnappedSolid> leaned = with_overlap_nudges(fz, part->planes, &nudged, &pair_unions);
         if (nudged > 0)
           if (auto c = union_snapped_solids(leaned, part->planes)) u = std::move(c);
       }
