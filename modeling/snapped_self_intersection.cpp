@@ -50,13 +50,51 @@ bool faces_meet_2(const std::array<typename Kt::Point_2, 3>& h, const std::array
   return CGAL::do_intersect(th, tg);
 }
 
+// Drops coordinate c of a point.
+template <class Kt>
+typename Kt::Point_2 drop(const typename Kt::Point_3& p, int c) {
+  return c == 0 ? typename Kt::Point_2(p.y(), p.z()) : c == 1 ? typename Kt::Point_2(p.z(), p.x())
+                                                              : typename Kt::Point_2(p.x(), p.y());
+}
+
+// True when the projections along axis c prove that the faces do not meet improperly; false
+// when they do not decide. A point where a segment meets a triangle in 3D projects into both
+// projections, so disjoint projections (exact 2D predicates) mean disjoint faces; with a shared
+// edge, third corners on opposite sides of it in a projection where the face h is not flat
+// are on opposite sides within any common plane too. Neighbouring faces of a smooth wall or an
+// almost flat cap are nearly coplanar, which sends CGAL's 3D predicates to exact arithmetic;
+// their projections along the normal's largest axis are far from degenerate.
+template <class Kt>
+bool separated_in_projection(const std::array<typename Kt::Point_3, 3>& h, const std::array<typename Kt::Point_3, 3>& g,
+                             const Shape& sh, int c) {
+  using P2 = typename Kt::Point_2;
+  const std::array<P2, 3> h2{drop<Kt>(h[0], c), drop<Kt>(h[1], c), drop<Kt>(h[2], c)};
+  const std::array<P2, 3> g2{drop<Kt>(g[0], c), drop<Kt>(g[1], c), drop<Kt>(g[2], c)};
+  const CGAL::Orientation oh = CGAL::orientation(h2[0], h2[1], h2[2]);
+  if (oh == CGAL::COLLINEAR) return false;
+  if (sh.shared == 2) {
+    const P2& a = at(h2, sh.r + 1);
+    const P2& b = at(h2, sh.r + 2);
+    const CGAL::Orientation o1 = CGAL::orientation(a, b, at(h2, sh.r));
+    const CGAL::Orientation o2 = CGAL::orientation(a, b, at(g2, sh.s));
+    return o2 != CGAL::COLLINEAR && o1 != o2;
+  }
+  if (CGAL::orientation(g2[0], g2[1], g2[2]) == CGAL::COLLINEAR) return false;
+  const typename Kt::Triangle_2 th(h2[0], h2[1], h2[2]), tg(g2[0], g2[1], g2[2]);
+  if (sh.shared == 1)
+    return !CGAL::do_intersect(th, typename Kt::Segment_2(at(g2, sh.sj + 1), at(g2, sh.sj + 2))) &&
+           !CGAL::do_intersect(tg, typename Kt::Segment_2(at(h2, sh.si + 1), at(h2, sh.si + 2)));
+  return !CGAL::do_intersect(th, tg);
+}
+
 // CGAL's rules (Polygon_mesh_processing/self_intersections.h, do_faces_intersect): a shared
 // edge is an intersection when the four corners are coplanar and the third corners lie on the
 // same side of it; a shared vertex when the edge of either face opposite it meets the other
-// face; otherwise any contact.
+// face; otherwise any contact. `c` is the axis to try projecting along first.
 template <class Kt>
 bool faces_meet_3(const std::array<typename Kt::Point_3, 3>& h, const std::array<typename Kt::Point_3, 3>& g,
-                  const Shape& sh) {
+                  const Shape& sh, int c) {
+  if (c >= 0 && separated_in_projection<Kt>(h, g, sh, c)) return false;
   if (sh.shared == 2) {
     const auto& a = at(h, sh.r + 1);
     const auto& b = at(h, sh.r + 2);
@@ -180,15 +218,25 @@ bool snapped_self_intersects(const SurfaceMesh& sm, const std::vector<std::array
       };
       return faces_meet_2<K>({Q(hv[0]), Q(hv[1]), Q(hv[2])}, {Q(gv[0]), Q(gv[1]), Q(gv[2])}, shape);
     }
+    // The axis of the largest component of h's normal (from the doubles nearest the corners).
+    int c = 2;
+    {
+      const Vec3 p0 = rounded_point(sm.point(hv[0])), p1 = rounded_point(sm.point(hv[1])),
+                 p2 = rounded_point(sm.point(hv[2]));
+      const Vec3 n = (p1 - p0).cross(p2 - p0);
+      c = 0;
+      for (int k = 1; k < 3; ++k)
+        if (std::abs(n[k]) > std::abs(n[c])) c = k;
+    }
     bool doubles = true;
     for (Vertex v : hv) doubles = doubles && is_double[v.idx()];
     for (Vertex v : gv) doubles = doubles && is_double[v.idx()];
     if (doubles) {
       auto D = [&](Vertex v) { return as_double[v.idx()]; };
-      return faces_meet_3<Epick>({D(hv[0]), D(hv[1]), D(hv[2])}, {D(gv[0]), D(gv[1]), D(gv[2])}, shape);
+      return faces_meet_3<Epick>({D(hv[0]), D(hv[1]), D(hv[2])}, {D(gv[0]), D(gv[1]), D(gv[2])}, shape, c);
     }
     auto P = [&](Vertex v) { return sm.point(v); };
-    return faces_meet_3<K>({P(hv[0]), P(hv[1]), P(hv[2])}, {P(gv[0]), P(gv[1]), P(gv[2])}, shape);
+    return faces_meet_3<K>({P(hv[0]), P(hv[1]), P(hv[2])}, {P(gv[0]), P(gv[1]), P(gv[2])}, shape, -1);
   };
 
   try {
