@@ -187,7 +187,7 @@ Result<PolygonSoup> parse_ply(const std::string& content) {
     return true;
   };
   std::string_view line;
-  if (!next_line(line) || split(line).size() != 1 || split(line)[0] != "ply")
+  if (!next_line(line) || split(line) != std::vector<std::string_view>{"ply"})
     return R::error("not a PLY file (the first line is not 'ply')");
   enum class Format { none, ascii, little, big } format = Format::none;
   std::vector<Element> elements;

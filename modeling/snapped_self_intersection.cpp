@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <optional>
 
 namespace ps::exact {
 namespace {
@@ -48,6 +49,15 @@ bool faces_meet_2(const std::array<typename Kt::Point_2, 3>& h, const std::array
     return CGAL::do_intersect(th, typename Kt::Segment_2(at(g, sh.sj + 1), at(g, sh.sj + 2))) ||
            CGAL::do_intersect(tg, typename Kt::Segment_2(at(h, sh.si + 1), at(h, sh.si + 2)));
   return CGAL::do_intersect(th, tg);
+}
+
+// The axis of the component of n largest in magnitude: dropping it projects a plane with
+// normal n one-to-one.
+int largest_axis(const Vec3& n) {
+  int c = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(n[k]) > std::abs(n[c])) c = k;
+  return c;
 }
 
 // Drops coordinate c of a point.
@@ -173,14 +183,11 @@ bool snapped_self_intersects(const SurfaceMesh& sm, const std::vector<std::array
   // such a cap: planar only up to rounding, so its pairs are never decided by intervals.
   // (The points were evaluated exactly by the caller, so an approximation that is a single
   // double is the exact value.)
-  std::vector<char> is_double(nv, 0);
-  std::vector<Epick::Point_3> as_double(nv);
+  std::vector<std::optional<Epick::Point_3>> as_double(nv);
   for (Vertex v : sm.vertices()) {
     const auto& a = CGAL::approx(sm.point(v));
-    if (a.x().is_point() && a.y().is_point() && a.z().is_point()) {
-      is_double[v.idx()] = 1;
+    if (a.x().is_point() && a.y().is_point() && a.z().is_point())
       as_double[v.idx()] = Epick::Point_3(a.x().inf(), a.y().inf(), a.z().inf());
-    }
   }
 
   auto pair_intersects = [&](const std::array<Vertex, 3>& hv, const std::array<Vertex, 3>& gv) {
@@ -207,33 +214,21 @@ bool snapped_self_intersects(const SurfaceMesh& sm, const std::vector<std::array
     }
     const int plane = common_plane(hv, gv);
     if (plane >= 0) {
-      // In the plane: drop the coordinate of the normal's largest component.
-      const Vec3& n = planes[static_cast<std::size_t>(plane)].normal;
-      int c = 0;
-      for (int k = 1; k < 3; ++k)
-        if (std::abs(n[k]) > std::abs(n[c])) c = k;
-      auto Q = [&](Vertex v) {
-        const K::Point_3& p = sm.point(v);
-        return c == 0 ? K::Point_2(p.y(), p.z()) : c == 1 ? K::Point_2(p.z(), p.x()) : K::Point_2(p.x(), p.y());
-      };
+      // In the plane, projected along the axis of its normal's largest component.
+      const int c = largest_axis(planes[static_cast<std::size_t>(plane)].normal);
+      auto Q = [&](Vertex v) { return drop<K>(sm.point(v), c); };
       return faces_meet_2<K>({Q(hv[0]), Q(hv[1]), Q(hv[2])}, {Q(gv[0]), Q(gv[1]), Q(gv[2])}, shape);
     }
-    // The axis of the largest component of h's normal (from the doubles nearest the corners).
-    int c = 2;
-    {
-      const Vec3 p0 = rounded_point(sm.point(hv[0])), p1 = rounded_point(sm.point(hv[1])),
-                 p2 = rounded_point(sm.point(hv[2]));
-      const Vec3 n = (p1 - p0).cross(p2 - p0);
-      c = 0;
-      for (int k = 1; k < 3; ++k)
-        if (std::abs(n[k]) > std::abs(n[c])) c = k;
-    }
     bool doubles = true;
-    for (Vertex v : hv) doubles = doubles && is_double[v.idx()];
-    for (Vertex v : gv) doubles = doubles && is_double[v.idx()];
+    for (Vertex v : hv) doubles = doubles && as_double[v.idx()].has_value();
+    for (Vertex v : gv) doubles = doubles && as_double[v.idx()].has_value();
     if (doubles) {
-      auto D = [&](Vertex v) { return as_double[v.idx()]; };
-      return faces_meet_3<Epick>({D(hv[0]), D(hv[1]), D(hv[2])}, {D(gv[0]), D(gv[1]), D(gv[2])}, shape, c);
+      auto D = [&](Vertex v) { return *as_double[v.idx()]; };
+      const std::array<Epick::Point_3, 3> h{D(hv[0]), D(hv[1]), D(hv[2])};
+      // Projected first along the axis of the largest component of h's normal.
+      auto V = [](const Epick::Point_3& p) { return Vec3(p.x(), p.y(), p.z()); };
+      const int c = largest_axis((V(h[1]) - V(h[0])).cross(V(h[2]) - V(h[0])));
+      return faces_meet_3<Epick>(h, {D(gv[0]), D(gv[1]), D(gv[2])}, shape, c);
     }
     auto P = [&](Vertex v) { return sm.point(v); };
     return faces_meet_3<K>({P(hv[0]), P(hv[1]), P(hv[2])}, {P(gv[0]), P(gv[1]), P(gv[2])}, shape, -1);

@@ -16,6 +16,12 @@
 namespace ps {
 namespace {
 
+// The same frusta, one by one.
+void expect_same_frusta(const std::vector<SnappedSolid>& a, const std::vector<SnappedSolid>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t f = 0; f < a.size(); ++f) EXPECT_TRUE(same_solid(a[f], b[f])) << f;
+}
+
 TEST(PairUnionMemo, AnswersAsCorefinementAndComputesEachPairOnce) {
   const auto planes = testing::read_seed9_planes();
   const auto frusta = testing::read_seed9_frusta_offset();
@@ -70,15 +76,13 @@ TEST(PairUnionMemo, RepairsGiveTheSameFrustaWithAndWithoutIt) {
   const auto connected = with_frustum_connectors(frusta, planes, &c1);
   const auto connected_memo = with_frustum_connectors(frusta, planes, &c2, &memo);
   EXPECT_EQ(c1, c2);
-  ASSERT_EQ(connected.size(), connected_memo.size());
-  for (std::size_t f = 0; f < connected.size(); ++f) EXPECT_TRUE(same_solid(connected[f], connected_memo[f])) << f;
+  expect_same_frusta(connected, connected_memo);
   const std::size_t computed_by_connectors = memo.computed();
   const auto leaned = with_overlap_nudges(frusta, planes, &n1);
   const auto leaned_memo = with_overlap_nudges(frusta, planes, &n2, &memo);
   EXPECT_EQ(n1, n2);
   EXPECT_EQ(n1, 1);
-  ASSERT_EQ(leaned.size(), leaned_memo.size());
-  for (std::size_t f = 0; f < leaned.size(); ++f) EXPECT_TRUE(same_solid(leaned[f], leaned_memo[f])) << f;
+  expect_same_frusta(leaned, leaned_memo);
   // The nudges asked about pairs the connectors had already asked about.
   EXPECT_GE(computed_by_connectors, 1u);
   EXPECT_GE(memo.hits(), 1u);
