@@ -56,6 +56,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -294,24 +295,30 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (k == "--cases") a.cases = std::stoi(next());
-    else if (k == "--first-seed") a.first_seed = std::stoull(next());
-    else if (k == "--only-seed") a.only_seed = std::stoull(next());
-    else if (k == "--timeout") a.timeout_s = std::stod(next());
-    else if (k == "--oblique-every") a.oblique_every = std::stoi(next());
-    else if (k == "--no-improve") a.improve = false;
-    else if (k == "--oblique-only") a.oblique_only = true;
-    else if (k == "--max-planes") a.max_planes = std::max(2, std::stoi(next()));
-    else if (k == "--points") {
-      a.min_points = std::max(8, std::stoi(next()));
-      a.max_points = std::max(a.min_points, std::stoi(next()));
-    }
-    else if (k == "--binary") a.binary = next();
-    else if (k == "--work") a.work = next();
-    else if (k == "--keep-failures") a.keep_failures = true;
-    else if (k == "--threads") a.threads = std::max(0, std::stoi(next()));
-    else {
-      std::fprintf(stderr, "recon_stress_bench: unknown option %s\n", k.c_str());
+    // A value that is not a number (std::stoi and friends throw) is refused naming the option.
+    try {
+      if (k == "--cases") a.cases = std::stoi(next());
+      else if (k == "--first-seed") a.first_seed = std::stoull(next());
+      else if (k == "--only-seed") a.only_seed = std::stoull(next());
+      else if (k == "--timeout") a.timeout_s = std::stod(next());
+      else if (k == "--oblique-every") a.oblique_every = std::stoi(next());
+      else if (k == "--no-improve") a.improve = false;
+      else if (k == "--oblique-only") a.oblique_only = true;
+      else if (k == "--max-planes") a.max_planes = std::max(2, std::stoi(next()));
+      else if (k == "--points") {
+        a.min_points = std::max(8, std::stoi(next()));
+        a.max_points = std::max(a.min_points, std::stoi(next()));
+      }
+      else if (k == "--binary") a.binary = next();
+      else if (k == "--work") a.work = next();
+      else if (k == "--keep-failures") a.keep_failures = true;
+      else if (k == "--threads") a.threads = std::max(0, std::stoi(next()));
+      else {
+        std::fprintf(stderr, "recon_stress_bench: unknown option %s\n", k.c_str());
+        return 2;
+      }
+    } catch (const std::exception&) {
+      std::fprintf(stderr, "recon_stress_bench: %s needs a number, got '%s'\n", k.c_str(), argv[i]);
       return 2;
     }
   }
