@@ -69,8 +69,56 @@ Point2 drop(const Point& p, int c) {
   return c == 0 ? Point2(p.y(), p.z()) : c == 1 ? Point2(p.z(), p.x()) : Point2(p.x(), p.y());
 }
 
-// True when faces f and g (distinct) intersect beyond what they share combinatorially.
-bool faces_intersect(const std::vector<Vec3>& pts, const Face& f, const Face& g, bool df, bool dg) {
+// === A face's plane, for a filtered side test
+// Most candidate pairs (about 70 per face on the refined 160k-face mesh of stress seed 938) are
+// told apart by one face lying strictly on one side of the other's plane. CGAL's orientation
+// predicate is exact but recomputes the plane for each point; here the plane is computed once
+// per face, and each point costs a dot product and an error bound. The sign is certified only
+// when it is larger than the bound; otherwise the caller asks the exact predicate.
+//
+// Why the bound holds: the value computed is n.(q - o) with n = (t1 - t0) x (t2 - t0), o = t0, a
+// sum of six products a_i b_j d_k of differences. Each product passes through at most eight
+// roundings (three differences, two products, the subtraction in n, two additions), so the
+// computed value differs from det[t1 - t0, t2 - t0, q - t0] by at most ((1+u)^8 - 1) times the
+// sum of the products' magnitudes, u = 2^-53; that sum computed in floating point is low by at
+// most a factor (1+u)^-9. 16u covers both with room. Values so small that products could be
+// subnormal (absolute rounding) are not certified, nor non-finite ones.
+struct FacePlane {
+  Vec3 o, n, m;  // a corner, the cross product, and |a_y b_z| + |a_z b_y| etc. for the bound
+};
+
+FacePlane face_plane(const std::vector<Vec3>& pts, const Face& f) {
+  const Vec3& t0 = pts[idx(f[0])];
+  const Vec3 a = pts[idx(f[1])] - t0, b = pts[idx(f[2])] - t0;
+  return {t0, a.cross(b),
+          Vec3(std::abs(a.y() * b.z()) + std::abs(a.z() * b.y()), std::abs(a.z() * b.x()) + std::abs(a.x() * b.z()),
+               std::abs(a.x() * b.y()) + std::abs(a.y() * b.x()))};
+}
+
+// +1 or -1: q is strictly on that side of the plane (the sign of CGAL::orientation(t0, t1, t2,
+// q)); 0: not certified (on the plane, or too close to tell in doubles).
+int certified_side(const FacePlane& pl, const Vec3& q) {
+  const Vec3 d = q - pl.o;
+  const double s = pl.n.dot(d);
+  const double perm = std::abs(d.x()) * pl.m.x() + std::abs(d.y()) * pl.m.y() + std::abs(d.z()) * pl.m.z();
+  if (!(perm > 1e-250) || !(perm < 1e300)) return 0;
+  const double bound = 0x1p-49 * perm;
+  return s > bound ? 1 : s < -bound ? -1 : 0;
+}
+
+// All `count` points certified strictly on one side of the plane.
+bool certified_one_side(const FacePlane& pl, const Vec3* const* q, int count) {
+  const int s0 = certified_side(pl, *q[0]);
+  if (s0 == 0) return false;
+  for (int i = 1; i < count; ++i)
+    if (certified_side(pl, *q[i]) != s0) return false;
+  return true;
+}
+
+// True when faces f and g (distinct) intersect beyond what they share combinatorially. pf and pg
+// are their planes (face_plane).
+bool faces_intersect(const std::vector<Vec3>& pts, const Face& f, const Face& g, bool df, bool dg,
+                     const FacePlane& pf, const FacePlane& pg) {
   int shared = 0, fi = -1, gi = -1;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
@@ -81,6 +129,21 @@ bool faces_intersect(const std::vector<Vec3>& pts, const Face& f, const Face& g,
           gi = j;
         }
       }
+  // The filtered quick rejection (the exact one below decides what this leaves open): with no
+  // shared vertex, one face strictly on one side of the other's plane; with one, each face's two
+  // other corners strictly on one side of the other's plane.
+  if (!df && !dg && shared <= 1) {
+    if (shared == 0) {
+      const Vec3* qg[3] = {&pts[idx(g[0])], &pts[idx(g[1])], &pts[idx(g[2])]};
+      if (certified_one_side(pf, qg, 3)) return false;
+      const Vec3* qf[3] = {&pts[idx(f[0])], &pts[idx(f[1])], &pts[idx(f[2])]};
+      if (certified_one_side(pg, qf, 3)) return false;
+    } else {
+      const Vec3* g_opp[2] = {&pts[idx(g[idx((gi + 1) % 3)])], &pts[idx(g[idx((gi + 2) % 3)])]};
+      const Vec3* f_opp[2] = {&pts[idx(f[idx((fi + 1) % 3)])], &pts[idx(f[idx((fi + 2) % 3)])]};
+      if (certified_one_side(pf, g_opp, 2) && certified_one_side(pg, f_opp, 2)) return false;
+    }
+  }
   const Point p[3] = {to_point(pts[idx(f[0])]), to_point(pts[idx(f[1])]), to_point(pts[idx(f[2])])};
   const Point q[3] = {to_point(pts[idx(g[0])]), to_point(pts[idx(g[1])]), to_point(pts[idx(g[2])])};
   if (shared >= 3) return true;  // a duplicated face
@@ -543,6 +606,7 @@ std::vector<std::array<int, 2>> intersecting_face_pairs(const std::vector<Vec3>&
     // The parallel grid (FaceGrid), testing each pair as it is found.
     std::vector<CGAL::Bbox_3> boxes(faces.size());
     std::vector<std::uint8_t> queried(faces.size(), 0), degenerate(faces.size(), 0);
+    std::vector<FacePlane> planes(faces.size());
     for (int f : query_faces) queried[idx(f)] = 1;
     std::vector<int> query;  // each queried face once, in order
     for (std::size_t f = 0; f < faces.size(); ++f)
@@ -552,12 +616,14 @@ std::vector<std::array<int, 2>> intersecting_face_pairs(const std::vector<Vec3>&
         const Face& fc = faces[f];
         boxes[f] = face_box(points, fc);
         degenerate[f] = collinear_face(points, fc) ? 1 : 0;
+        planes[f] = face_plane(points, fc);
       }
     });
     std::vector<std::vector<std::array<int, 2>>> found(kChunks);
     const bool gridded = FaceGrid::for_each_pair(boxes, queried, query, kChunks, [&](int f, int g, std::size_t c) {
       if (shares_embedded_vertex(f, g)) return;
-      if (faces_intersect(points, faces[idx(f)], faces[idx(g)], degenerate[idx(f)] != 0, degenerate[idx(g)] != 0))
+      if (faces_intersect(points, faces[idx(f)], faces[idx(g)], degenerate[idx(f)] != 0, degenerate[idx(g)] != 0,
+                          planes[idx(f)], planes[idx(g)]))
         found[c].push_back({f, g});
     });
     if (gridded) {
@@ -606,18 +672,21 @@ std::vector<std::array<int, 2>> intersecting_face_pairs(const std::vector<Vec3>&
   // Degeneracy (collinear corners) of the faces the candidates name, computed up front so the
   // parallel tests only read it.
   std::vector<std::uint8_t> degenerate(faces.size(), 0), named(faces.size(), 0);
+  std::vector<FacePlane> planes(faces.size());
   for (const auto& c : candidates) named[idx(c[0])] = named[idx(c[1])] = 1;
   auto mark_degenerate = [&](std::size_t begin, std::size_t end) {
     for (std::size_t f = begin; f < end; ++f)
       if (named[f]) {
         const Face& fc = faces[f];
         degenerate[f] = collinear_face(points, fc) ? 1 : 0;
+        planes[f] = face_plane(points, fc);
       }
   };
   auto test_range = [&](std::size_t begin, std::size_t end, std::vector<std::array<int, 2>>& out) {
     for (std::size_t i = begin; i < end; ++i) {
       const int f = candidates[i][0], g = candidates[i][1];
-      if (faces_intersect(points, faces[idx(f)], faces[idx(g)], degenerate[idx(f)] != 0, degenerate[idx(g)] != 0))
+      if (faces_intersect(points, faces[idx(f)], faces[idx(g)], degenerate[idx(f)] != 0, degenerate[idx(g)] != 0,
+                          planes[idx(f)], planes[idx(g)]))
         out.push_back({std::min(f, g), std::max(f, g)});
     }
   };

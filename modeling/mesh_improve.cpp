@@ -113,6 +113,10 @@ Result<TriMesh> improve_unit_scale(const TriMesh& mesh, const std::vector<bool>&
     ropt.min_length = options.min_length_fraction * (curve_box.empty() ? all_box : curve_box).diagonal();
   }
   ropt.max_faces = options.max_faces;
+  // The valence limit of each input vertex: twice its valence in the input (RefineOptions).
+  std::vector<int> base_valence(idx(nv));
+  for (int v = 0; v < nv; ++v) base_valence[idx(v)] = m.valence(v);
+  ropt.base_valence = &base_valence;
   ropt.max_flip_normal_angle_deg = options.max_flip_normal_angle_deg;
   SmoothOptions sopt;
   sopt.flow = options.curvature_evening ? NormalFlow::kCurvatureEvening : NormalFlow::kMeanCurvature;

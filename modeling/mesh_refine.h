@@ -29,10 +29,21 @@ struct RefineOptions {
   // Only edges whose two faces' normals differ by at most this angle are flipped: a flip across
   // a sharper crease would cut or fill the crease (a shape change, not a retriangulation).
   double max_flip_normal_angle_deg = 45.0;
+  // A face is not split while one of its corners has reached its valence limit: max_valence
+  // edges, or twice its starting valence when that is more (a fan centre of a triangulated cap
+  // starts with many). Starting valences: (*base_valence)[v] for v < base_valence->size(), or
+  // the mesh's own at the call when base_valence is null (mesh improvement passes its input's,
+  // so the limit does not grow from round to round); vertices made by splits start at 0. Splits
+  // add an edge at each corner and relaxation normally takes them away again; where it cannot
+  // (flips refused at a crease or a pinch, or locked after a self-intersection), repeated splits
+  // only made needles. 0: no limit. Measured: docs/mesh-improvement.md.
+  int max_valence = 32;
+  const std::vector<int>* base_valence = nullptr;
 };
 
 struct RefineStats {
   int splits = 0, flips = 0, passes = 0;
+  int valence_refusals = 0;  // split tests refused by the valence limit (a face counts once per pass)
 };
 
 // Sigma per vertex (#V); fixed is #V flags (nonzero: curve vertex).

@@ -275,6 +275,47 @@ TEST(Refinement, LengthFloorBoundsTheDensityOfDenselySampledCurves) {
   expect_valid(floored.to_trimesh());
 }
 
+// Splits where no flip may follow (every flip locked, as after repeated self-intersections)
+// stack needles around the vertices whose faces keep splitting. The valence limit stops a vertex
+// at max(max_valence, twice its starting valence); without it the same refinement goes far
+// beyond.
+TEST(Refinement, ValenceLimitStopsNeedleFansWhereFlipsCannotFollow) {
+  const auto in = ps::testing::staircase(3, 192);
+  auto built = HalfedgeMesh::build(in.mesh);
+  ASSERT_TRUE(built.is_ok());
+  for (const auto& e : in.fixed_edges) ASSERT_TRUE(built->constrain_edge(e[0], e[1]));
+  const std::vector<std::uint8_t> fixed0(in.fixed_vertex.begin(), in.fixed_vertex.end());
+  std::vector<int> base(idx(built->num_vertices()));
+  for (int v = 0; v < built->num_vertices(); ++v) base[idx(v)] = built->valence(v);
+  FlipLock no_flips;
+  no_flips.all = true;
+  auto max_excess = [&](const HalfedgeMesh& m, int limit) {
+    int worst = 0;
+    for (int v = 0; v < m.num_vertices(); ++v) {
+      const int cap = idx(v) < base.size() ? std::max(limit, 2 * base[idx(v)]) : limit;
+      worst = std::max(worst, m.valence(v) - cap);
+    }
+    return worst;
+  };
+  HalfedgeMesh limited = *built, unlimited = *built;
+  std::vector<std::uint8_t> f1 = fixed0, f2 = fixed0;
+  RefineOptions o;
+  o.base_valence = &base;
+  const RefineStats a = refine_mesh(limited, f1, no_flips, o);
+  RefineOptions off = o;
+  off.max_valence = 0;
+  const RefineStats b = refine_mesh(unlimited, f2, no_flips, off);
+  EXPECT_EQ(a.flips, 0);
+  EXPECT_GT(a.splits, 0);
+  EXPECT_GT(a.valence_refusals, 0);
+  EXPECT_EQ(b.valence_refusals, 0);
+  EXPECT_LE(max_excess(limited, o.max_valence), 0);
+  EXPECT_GT(max_excess(unlimited, o.max_valence), 0);
+  EXPECT_LT(limited.num_faces(), unlimited.num_faces());
+  expect_valid(limited.to_trimesh());
+  EXPECT_FALSE(does_self_intersect(limited.to_trimesh()));
+}
+
 // === Smoothing (Eq. 4.3)
 
 TEST(Smoothing, ARegularIcosahedronIsAFixedPointOfCurvatureEvening) {
