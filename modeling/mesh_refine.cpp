@@ -22,11 +22,6 @@ class Relaxer {
     const int c = m_.target(HalfedgeMesh::next(h)), d = m_.target(HalfedgeMesh::next(t));
     const Vec3 &pa = m_.position(a), &pb = m_.position(b), &pc = m_.position(c), &pd = m_.position(d);
     if (lock_.all) return false;
-    if (!lock_.regions.empty()) {
-      Box3 quad;
-      for (const Vec3* p : {&pa, &pb, &pc, &pd}) quad.extend(*p);
-      if (lock_.locks(quad)) return false;
-    }
     // Opposite angles gamma, delta summing to more than pi: with sines > 0 this is
     // cot gamma + cot delta < 0, i.e. cos g sin d + cos d sin g < 0 (scaled by the edge
     // lengths); a tiny relative margin keeps co-circular quads stable.
@@ -35,6 +30,12 @@ class Relaxer {
     const double cos_d = da.dot(db), sin_d = da.cross(db).norm();
     const double scale = ca.norm() * cb.norm() * da.norm() * db.norm();
     if (!(cos_c * sin_d + cos_d * sin_c < -1e-9 * scale)) return false;
+    // Locked regions after the angle test: most edges fail that, and the regions are scanned.
+    if (!lock_.regions.empty()) {
+      Box3 quad;
+      for (const Vec3* p : {&pa, &pb, &pc, &pd}) quad.extend(*p);
+      if (lock_.locks(quad)) return false;
+    }
     // No fold: the current faces must not meet at a sharp crease, and the new faces must face
     // the same way as the old ones and as each other, and be proper triangles.
     const Vec3 nf = (pb - pa).cross(pc - pa), ng = (pa - pb).cross(pd - pb);
