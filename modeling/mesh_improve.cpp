@@ -306,9 +306,21 @@ Result<TriMesh> improve_unit_scale(const TriMesh& mesh, const std::vector<bool>&
   }
 
   rep.faces_out = m.num_faces();
+  // === Worse on both figures: keep the input. The RMS dihedral alone would not do: rounding
+  // a 90-degree crease over several faces raises it before refinement brings it down, and a
+  // union is mostly flat pieces (Skull-20 ends higher than it starts, and is much better
+  // triangulated); nor the angle alone (a smoothed surface can need thinner triangles).
+  TriMesh out = m.to_trimesh();
+  rep.quality_in = mesh_quality(mesh);
+  rep.quality_out = mesh_quality(out);
+  if (rep.quality_out.mean_min_angle_deg < rep.quality_in.mean_min_angle_deg &&
+      rep.quality_out.rms_dihedral_deg > rep.quality_in.rms_dihedral_deg) {
+    rep.kept_input = true;
+    out = mesh;
+  }
   rep.ms = ms_since(t_start);
   if (report) *report = rep;
-  return m.to_trimesh();
+  return out;
 }
 }  // namespace
 

@@ -59,24 +59,6 @@ struct ImproveOptions {
   double max_flip_normal_angle_deg = 45.0;
 };
 
-struct ImproveReport {
-  int splits = 0, flips = 0;
-  int smoothing_rollbacks = 0;   // vertex moves undone (a face turned over, or an intersection)
-  int clearance_limits = 0;      // smoothing moves shortened by the clearance limit
-  int crossing_rollbacks = 0;    // of smoothing_rollbacks: moves undone because faces crossed
-  double ms = 0;                 // wall time of the whole call
-  int refinement_rollbacks = 0;  // rounds redone with flips locked after an intersection
-  int faces_in = 0, faces_out = 0;
-  double refine_ms = 0, smooth_ms = 0, check_ms = 0;  // wall time per stage, summed over rounds
-};
-
-// fixed_vertex: #V flags (true: on an input curve). fixed_edges: vertex pairs, either order.
-// The input must be closed and manifold; the output is too, with the same topology.
-// Endpoints of fixed edges are treated as fixed even when not flagged.
-Result<TriMesh> improve_mesh(const TriMesh& mesh, const std::vector<bool>& fixed_vertex,
-                             const std::vector<std::array<int, 2>>& fixed_edges,
-                             const ImproveOptions& options = {}, ImproveReport* report = nullptr);
-
 // Triangle and smoothness figures (for tests, benchmarks and reports).
 struct MeshQuality {
   double min_angle_deg = 0;       // smallest triangle angle
@@ -86,6 +68,33 @@ struct MeshQuality {
   double max_dihedral_deg = 0;    // largest angle between the normals of adjacent faces
   double rms_dihedral_deg = 0;    // root mean square of that angle, weighted by edge length
 };
+
+struct ImproveReport {
+  int splits = 0, flips = 0;
+  int smoothing_rollbacks = 0;   // vertex moves undone (a face turned over, or an intersection)
+  int clearance_limits = 0;      // smoothing moves shortened by the clearance limit
+  int crossing_rollbacks = 0;    // of smoothing_rollbacks: moves undone because faces crossed
+  double ms = 0;                 // wall time of the whole call
+  int refinement_rollbacks = 0;  // rounds redone with flips locked after an intersection
+  int faces_in = 0, faces_out = 0;
+  double refine_ms = 0, smooth_ms = 0, check_ms = 0;  // wall time per stage, summed over rounds
+  // The input came back unchanged because the improved mesh was worse on both smoothness
+  // figures: a smaller mean smallest angle and a larger RMS dihedral (see improve_mesh).
+  bool kept_input = false;
+  MeshQuality quality_in, quality_out;  // of the input and of the improved mesh (before that choice)
+};
+
+// fixed_vertex: #V flags (true: on an input curve). fixed_edges: vertex pairs, either order.
+// The input must be closed and manifold; the output is too, with the same topology.
+// When the improved mesh has both a smaller mean smallest angle and a larger RMS dihedral than
+// the input, the input is returned instead (report->kept_input): seen on unions made of needles
+// where flips cannot follow the splits (docs/mesh-improvement.md, "When the improvement makes
+// it worse").
+// Endpoints of fixed edges are treated as fixed even when not flagged.
+Result<TriMesh> improve_mesh(const TriMesh& mesh, const std::vector<bool>& fixed_vertex,
+                             const std::vector<std::array<int, 2>>& fixed_edges,
+                             const ImproveOptions& options = {}, ImproveReport* report = nullptr);
+
 // Requires valid indices; edges with other than two faces are skipped in the dihedral figures.
 MeshQuality mesh_quality(const TriMesh& mesh);
 

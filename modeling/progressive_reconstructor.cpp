@@ -826,7 +826,15 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
       rep.timings.improve_refine_ms = irep.refine_ms;
       rep.timings.improve_smooth_ms = irep.smooth_ms;
       rep.timings.improve_check_ms = irep.check_ms;
-      if (improved) {
+      if (improved && irep.kept_input) {
+        char figures[160];
+        std::snprintf(figures, sizeof figures,
+                      "mean smallest angle %.1f -> %.1f deg, RMS dihedral %.1f -> %.1f deg",
+                      irep.quality_in.mean_min_angle_deg, irep.quality_out.mean_min_angle_deg,
+                      irep.quality_in.rms_dihedral_deg, irep.quality_out.rms_dihedral_deg);
+        rep.warnings.push_back(std::string("mesh improvement made the surface worse (") + figures +
+                               "); the unimproved surface was kept");
+      } else if (improved) {
         mesh = std::move(*improved);
         rep.improved = true;
         if (mesh.vertices.size() != rep.curve_vertex.size()) {

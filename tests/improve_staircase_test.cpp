@@ -342,3 +342,30 @@ TEST(ImproveStaircase, BadInputIsRefusedWithAReason) {
   opt.normal_step = 3;
   EXPECT_FALSE(improve_mesh(in.mesh, in.fixed_vertex, in.fixed_edges, opt).is_ok());
 }
+
+// Splits with no flip to follow them (flips forbidden) on a flattened staircase make needles, and
+// smoothing them makes the surface rougher: worse on both figures, so the input comes back
+// unchanged. The same input with the default options improves and is returned improved.
+TEST(ImproveStaircase, AResultWorseOnBothFiguresGivesBackTheInput) {
+  JaggyInput in = staircase(6, 48);
+  for (auto& v : in.mesh.vertices) v.y() *= 0.1;
+  ImproveOptions needles;
+  needles.min_length_fraction = 0;
+  needles.max_flip_normal_angle_deg = 0;
+  needles.ramp_rounds = 0;
+  ImproveReport rep;
+  const TriMesh out = improved(in, &rep, needles);
+  EXPECT_TRUE(rep.kept_input);
+  EXPECT_LT(rep.quality_out.mean_min_angle_deg, rep.quality_in.mean_min_angle_deg);
+  EXPECT_GT(rep.quality_out.rms_dihedral_deg, rep.quality_in.rms_dihedral_deg);
+  EXPECT_GT(rep.faces_out, rep.faces_in);  // it did refine; the result was dropped
+  EXPECT_EQ(out.faces, in.mesh.faces);
+  EXPECT_EQ(out.vertices, in.mesh.vertices);
+
+  ImproveReport good;
+  const TriMesh better = improved(in, &good);
+  EXPECT_FALSE(good.kept_input);
+  EXPECT_GT(better.faces.size(), in.mesh.faces.size());
+  EXPECT_GT(good.quality_out.mean_min_angle_deg, good.quality_in.mean_min_angle_deg);
+  EXPECT_LT(good.quality_out.rms_dihedral_deg, good.quality_in.rms_dihedral_deg);
+}
