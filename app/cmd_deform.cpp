@@ -62,9 +62,10 @@ void run(const DeformArgs& a) {
     throw CommandFailed(a.out + ": unknown mesh extension for the output (expected .obj, .off, .ply or .stl)");
   auto spec = read_deform_spec(a.spec);
   if (!spec) throw CommandFailed(spec.message());
-  auto mesh = read_mesh(a.mesh);
+  MeshReadOptions triangles;
+  triangles.triangles_only = true;  // the spec's vertex indices refer to the file's own triangles
+  auto mesh = read_mesh(a.mesh, triangles);
   if (!mesh) throw CommandFailed(mesh.message());
-  if (Status ok = check_triangle_mesh_file(a.mesh); !ok) throw CommandFailed(ok.message());
   const MeshTopology topo = mesh_topology(*mesh);
   if (!topo.manifold())
     throw CommandFailed(a.mesh + ": mesh is not 2-manifold (" + std::to_string(topo.nonmanifold_edges) +

@@ -1,5 +1,4 @@
-// Deformation spec reader (nlohmann_json). check_triangle_mesh_file reads the mesh through
-// modeling/mesh_io.h.
+// Deformation spec reader (nlohmann_json).
 #include "modeling/deform_spec.h"
 
 #include <cmath>
@@ -10,7 +9,6 @@
 #include <set>
 #include <sstream>
 
-#include "modeling/mesh_io.h"
 
 namespace ps {
 namespace {
@@ -198,17 +196,6 @@ DeformParameters deform_parameters(const DeformSpec& s, std::size_t num_vertices
     for (const auto& [v, l] : s.lambda_per_vertex) p.vertex_lambda[static_cast<std::size_t>(v)] = l;
   }
   return p;
-}
-
-Status check_triangle_mesh_file(const std::string& path) {
-  auto soup = read_polygon_soup_file(path);
-  if (!soup) return soup.status();
-  const auto& polygons = soup->polygons;
-  for (std::size_t f = 0; f < polygons.size(); ++f)
-    if (polygons[f].size() != 3)
-      return Status::error(path + ": face " + std::to_string(f) + " has " + std::to_string(polygons[f].size()) +
-                           " corners; deformation needs a triangle mesh");
-  return Status::ok();
 }
 
 }  // namespace ps

@@ -38,8 +38,4 @@ Status check_deform_spec(const DeformSpec& spec, std::size_t num_vertices, const
 // The solver parameters the spec describes, for a mesh with `num_vertices` vertices.
 DeformParameters deform_parameters(const DeformSpec& spec, std::size_t num_vertices);
 
-// True when every polygon of the mesh file has three corners; otherwise an error naming the
-// file and the first polygon that does not (read_mesh would triangulate it silently).
-Status check_triangle_mesh_file(const std::string& path);
-
 }  // namespace ps

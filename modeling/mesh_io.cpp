@@ -71,7 +71,7 @@ Result<PolygonSoup> read_polygon_soup_file(const std::string& path) {
   return soup;
 }
 
-Result<TriMesh> read_mesh(const std::string& path) {
+Result<TriMesh> read_mesh(const std::string& path, const MeshReadOptions& options) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) return Result<TriMesh>::error(path + ": no such file");
@@ -109,6 +109,9 @@ Result<TriMesh> read_mesh(const std::string& path) {
       mesh.faces.push_back({static_cast<int>(poly[0]), static_cast<int>(poly[1]), static_cast<int>(poly[2])});
       continue;
     }
+    if (options.triangles_only)
+      return Result<TriMesh>::error(path + ": face " + std::to_string(fi) + " has " + std::to_string(poly.size()) +
+                                    " corners; a triangle mesh is needed here");
     std::vector<Vec3> corners;
     for (std::size_t v : poly) corners.push_back(mesh.vertices[v]);
     for (const auto& t : triangulate_polygon_3d(corners))

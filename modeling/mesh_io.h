@@ -21,7 +21,12 @@
 
 namespace ps {
 
-Result<TriMesh> read_mesh(const std::string& path);
+struct MeshReadOptions {
+  // Refuse a polygon with more than three corners (naming it) instead of splitting it into
+  // triangles: for commands whose input must be the user's own triangles (deform).
+  bool triangles_only = false;
+};
+Result<TriMesh> read_mesh(const std::string& path, const MeshReadOptions& options = {});
 // The file's vertices and polygons as stored (no triangulation, no finiteness check); every
 // index in range. Errors name the file.
 Result<PolygonSoup> read_polygon_soup_file(const std::string& path);
