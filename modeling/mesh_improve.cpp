@@ -48,21 +48,41 @@ Result<TriMesh> improve_unit_scale(const TriMesh& mesh, const std::vector<bool>&
 Result<TriMesh> improve_mesh(const TriMesh& mesh, const std::vector<bool>& fixed_vertex,
                              const std::vector<std::array<int, 2>>& fixed_edges,
                              const ImproveOptions& options, ImproveReport* report) {
-  const double diag = bounding_box(mesh.vertices).diagonal();
-  if (!std::isfinite(diag) || diag <= 0 || (diag >= 1 && diag < 2))
-    return improve_unit_scale(mesh, fixed_vertex, fixed_edges, options, report);
-  const int k = -std::ilogb(diag);
-  TriMesh scaled = mesh;
-  for (auto& v : scaled.vertices)
-    for (int c = 0; c < 3; ++c) v[c] = std::ldexp(v[c], k);
-  auto out = improve_unit_scale(scaled, fixed_vertex, fixed_edges, options, report);
+  const auto t_start = Clock::now();
+  ImproveReport rep;
+  auto out = [&]() -> Result<TriMesh> {
+    const double diag = bounding_box(mesh.vertices).diagonal();
+    if (!std::isfinite(diag) || diag <= 0 || (diag >= 1 && diag < 2))
+      return improve_unit_scale(mesh, fixed_vertex, fixed_edges, options, &rep);
+    const int k = -std::ilogb(diag);
+    TriMesh scaled = mesh;
+    for (auto& v : scaled.vertices)
+      for (int c = 0; c < 3; ++c) v[c] = std::ldexp(v[c], k);
+    auto improved = improve_unit_scale(scaled, fixed_vertex, fixed_edges, options, &rep);
+    if (!improved) return improved;
+    for (auto& v : improved->vertices)
+      for (int c = 0; c < 3; ++c) v[c] = std::ldexp(v[c], -k);
+    // Fixed vertices never move; restoring them also covers coordinates so far below the
+    // model's size that scaling them made subnormal numbers and lost bits.
+    for (std::size_t v = 0; v < mesh.vertices.size() && v < improved->vertices.size(); ++v)
+      if (fixed_vertex[v]) improved->vertices[v] = mesh.vertices[v];
+    return improved;
+  }();
   if (!out) return out;
-  for (auto& v : out->vertices)
-    for (int c = 0; c < 3; ++c) v[c] = std::ldexp(v[c], -k);
-  // Fixed vertices never move; restoring them also covers coordinates so far below the model's
-  // size that scaling them made subnormal numbers and lost bits.
-  for (std::size_t v = 0; v < mesh.vertices.size() && v < out->vertices.size(); ++v)
-    if (fixed_vertex[v]) out->vertices[v] = mesh.vertices[v];
+  // === Worse on both figures: keep the input (the caller's own, not a rescaled copy). The RMS
+  // dihedral alone would not do: rounding a 90-degree crease over several faces raises it before
+  // refinement brings it down, and a union is mostly flat pieces (Skull-20 ends higher than it
+  // starts, and is much better triangulated); nor the angle alone (a smoothed surface can need
+  // thinner triangles). Both figures are scale-invariant.
+  rep.quality_in = mesh_quality(mesh);
+  rep.quality_out = mesh_quality(*out);
+  if (rep.quality_out.mean_min_angle_deg < rep.quality_in.mean_min_angle_deg &&
+      rep.quality_out.rms_dihedral_deg > rep.quality_in.rms_dihedral_deg) {
+    rep.kept_input = true;
+    *out = mesh;
+  }
+  rep.ms = ms_since(t_start);
+  if (report) *report = rep;
   return out;
 }
 
@@ -70,7 +90,6 @@ namespace {
 Result<TriMesh> improve_unit_scale(const TriMesh& mesh, const std::vector<bool>& fixed_vertex,
                                    const std::vector<std::array<int, 2>>& fixed_edges,
                                    const ImproveOptions& options, ImproveReport* report) {
-  const auto t_start = Clock::now();
   ImproveReport rep;
 
   // === Validate the input
@@ -306,21 +325,8 @@ Result<TriMesh> improve_unit_scale(const TriMesh& mesh, const std::vector<bool>&
   }
 
   rep.faces_out = m.num_faces();
-  // === Worse on both figures: keep the input. The RMS dihedral alone would not do: rounding
-  // a 90-degree crease over several faces raises it before refinement brings it down, and a
-  // union is mostly flat pieces (Skull-20 ends higher than it starts, and is much better
-  // triangulated); nor the angle alone (a smoothed surface can need thinner triangles).
-  TriMesh out = m.to_trimesh();
-  rep.quality_in = mesh_quality(mesh);
-  rep.quality_out = mesh_quality(out);
-  if (rep.quality_out.mean_min_angle_deg < rep.quality_in.mean_min_angle_deg &&
-      rep.quality_out.rms_dihedral_deg > rep.quality_in.rms_dihedral_deg) {
-    rep.kept_input = true;
-    out = mesh;
-  }
-  rep.ms = ms_since(t_start);
   if (report) *report = rep;
-  return out;
+  return m.to_trimesh();
 }
 }  // namespace
 

@@ -75,7 +75,8 @@ struct ImproveReport {
   int clearance_limits = 0;      // smoothing moves shortened by the clearance limit
   int crossing_rollbacks = 0;    // of smoothing_rollbacks: moves undone because faces crossed
   double ms = 0;                 // wall time of the whole call
-  int refinement_rollbacks = 0;  // rounds redone with flips locked after an intersection
+  int refinement_rollbacks = 0;  // refinements undone after an intersection (redone with flips
+                                 // locked near it; after a second one the round stays unrefined)
   int faces_in = 0, faces_out = 0;
   double refine_ms = 0, smooth_ms = 0, check_ms = 0;  // wall time per stage, summed over rounds
   // The input came back unchanged because the improved mesh was worse on both smoothness
@@ -86,11 +87,11 @@ struct ImproveReport {
 
 // fixed_vertex: #V flags (true: on an input curve). fixed_edges: vertex pairs, either order.
 // The input must be closed and manifold; the output is too, with the same topology.
-// When the improved mesh has both a smaller mean smallest angle and a larger RMS dihedral than
-// the input, the input is returned instead (report->kept_input): seen on unions made of needles
-// where flips cannot follow the splits (docs/mesh-improvement.md, "When the improvement makes
-// it worse").
 // Endpoints of fixed edges are treated as fixed even when not flagged.
+// When the improved mesh has both a smaller mean smallest angle and a larger RMS dihedral than
+// the input, the input is returned instead, unchanged (report->kept_input): seen on unions made
+// of needles where flips cannot follow the splits (docs/mesh-improvement.md, "When the
+// improvement makes it worse").
 Result<TriMesh> improve_mesh(const TriMesh& mesh, const std::vector<bool>& fixed_vertex,
                              const std::vector<std::array<int, 2>>& fixed_edges,
                              const ImproveOptions& options = {}, ImproveReport* report = nullptr);
