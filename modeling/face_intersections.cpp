@@ -464,16 +464,25 @@ class FaceGrid {
     // Pairs of queried faces, cell by cell. A pair is reported from the cell of the lowest
     // corner of the two boxes' intersection: the cell of max(a.min, b.min) per axis, which is
     // the larger of the two boxes' lowest cells (the cell of a coordinate is monotone in it).
+    // Within a cell the entries are sorted by their boxes' lowest x and swept: b is tested
+    // against a only while b starts (in x) before a ends. On needle-soup unions the cells hold
+    // about 150 entries each (the median box extent is a needle's length), and testing every
+    // pair of a cell was most of the check (stress seed 217: 64M box tests per smoothing check).
     const std::size_t step = (runs + chunks - 1) / chunks;
     parallel_over(chunks, 0, [&](std::size_t c) {
       const std::size_t r_end = std::min(runs, (c + 1) * step);
       for (std::size_t r = std::min(runs, c * step); r < r_end; ++r) {
+        const auto first = entries.begin() + static_cast<std::ptrdiff_t>(run_start[r]);
+        const auto last = entries.begin() + static_cast<std::ptrdiff_t>(run_start[r + 1]);
+        std::sort(first, last, [](const CellEntry& a, const CellEntry& b) {
+          return a.box.xmin() < b.box.xmin() || (a.box.xmin() == b.box.xmin() && a.face < b.face);
+        });
         const std::array<std::uint32_t, 3> at = grid.coords(run_cell[r]);
         for (std::size_t i = run_start[r]; i < run_start[r + 1]; ++i) {
           const CellEntry& a = entries[i];
-          for (std::size_t j = i + 1; j < run_start[r + 1]; ++j) {
-            const CellEntry& b = entries[j];  // a.face < b.face: sorted within a cell
-            if (owned_pair(a.box, a.lo, b.box, b.lo, at)) visit(a.face, b.face, c);
+          for (std::size_t j = i + 1; j < run_start[r + 1] && entries[j].box.xmin() <= a.box.xmax(); ++j) {
+            const CellEntry& b = entries[j];
+            if (owned_pair(a.box, a.lo, b.box, b.lo, at)) visit(std::min(a.face, b.face), std::max(a.face, b.face), c);
           }
         }
       }
@@ -510,7 +519,8 @@ class FaceGrid {
           const std::size_t r = run_of(cell);
           if (r == runs) return;
           const std::array<std::uint32_t, 3> at = grid.coords(cell);
-          for (std::size_t i = run_start[r]; i < run_start[r + 1]; ++i) {
+          // Sorted by lowest x (above): the entries after one starting beyond f's box miss it.
+          for (std::size_t i = run_start[r]; i < run_start[r + 1] && entries[i].box.xmin() <= boxes[f].xmax(); ++i) {
             const CellEntry& b = entries[i];
             if (owned_pair(boxes[f], rf.lo, b.box, b.lo, at))
               visit(std::min(static_cast<int>(f), b.face), std::max(static_cast<int>(f), b.face), c);
