@@ -373,6 +373,7 @@ MeshQuality mesh_quality(const TriMesh& mesh) {
       if (!inserted) ++itr->second[2];
     }
   double wsum = 0, sq = 0;
+  std::size_t interior = 0, over_60 = 0, over_90 = 0;
   for (const auto& [key, e] : edges) {
     if (e[2] != 1) continue;
     const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
@@ -381,10 +382,17 @@ MeshQuality mesh_quality(const TriMesh& mesh) {
     const Vec3& n2 = normals[idx(e[1])];
     const double ang = rad * std::atan2(n1.cross(n2).norm(), n1.dot(n2));
     q.max_dihedral_deg = std::max(q.max_dihedral_deg, ang);
+    ++interior;
+    if (ang > 60.0) ++over_60;
+    if (ang > 90.0) ++over_90;
     sq += len * ang * ang;
     wsum += len;
   }
   q.rms_dihedral_deg = wsum > 0 ? std::sqrt(sq / wsum) : 0.0;
+  if (interior > 0) {
+    q.sharp_edge_share = static_cast<double>(over_60) / static_cast<double>(interior);
+    q.folded_edge_share = static_cast<double>(over_90) / static_cast<double>(interior);
+  }
   return q;
 }
 

@@ -67,6 +67,11 @@ struct MeshQuality {
   double mean_aspect = 0;
   double max_dihedral_deg = 0;    // largest angle between the normals of adjacent faces
   double rms_dihedral_deg = 0;    // root mean square of that angle, weighted by edge length
+  // Shares of the edges with two faces (by count, not length) whose faces meet at more than 60
+  // and 90 degrees. The RMS dihedral is dominated by long edges: a union of frusta has long flat
+  // walls and scores low on it although a quarter of its edges are creases over 60 degrees.
+  double sharp_edge_share = 0;
+  double folded_edge_share = 0;
 };
 
 struct ImproveReport {

@@ -11,6 +11,7 @@
 
 #include "modeling/face_intersections.h"
 #include "modeling/halfedge_mesh.h"
+#include "modeling/mesh_improve.h"
 #include "modeling/mesh_io.h"
 #include "modeling/mesh_queries.h"
 #include "modeling/mesh_refine.h"
@@ -639,4 +640,34 @@ TEST(FaceIntersections, GridAndSweepFindTheSamePairs) {
   }
   EXPECT_GE(with_pairs, 4);  // the noise made crossings, so the comparison is not of empty sets
   EXPECT_EQ(compared, 32);
+}
+
+// The shares of edges by dihedral angle (between face normals), on the Platonic solids whose
+// angles are known: icosahedron 41.8 deg, octahedron 70.5 deg, tetrahedron 109.5 deg.
+TEST(MeshQuality, SharpAndFoldedEdgeSharesCountEdgesByTheirAngle) {
+  const MeshQuality ico = mesh_quality(icosahedron());
+  EXPECT_EQ(ico.sharp_edge_share, 0.0);
+  EXPECT_EQ(ico.folded_edge_share, 0.0);
+  EXPECT_NEAR(ico.max_dihedral_deg, 41.81, 0.01);
+
+  TriMesh octa;
+  octa.vertices = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  octa.faces = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  const MeshQuality o = mesh_quality(octa);
+  EXPECT_EQ(o.sharp_edge_share, 1.0);
+  EXPECT_EQ(o.folded_edge_share, 0.0);
+
+  TriMesh tet;
+  tet.vertices = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+  tet.faces = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  const MeshQuality t = mesh_quality(tet);
+  EXPECT_EQ(t.sharp_edge_share, 1.0);
+  EXPECT_EQ(t.folded_edge_share, 1.0);
+
+  // The top vertex pulled down to z = 0.2: the four edges at it flatten to 22 degrees, the
+  // four equator edges fold to 109 degrees, the four bottom edges stay at 70.5 degrees.
+  octa.vertices[4] = {0, 0, 0.2};
+  const MeshQuality flat = mesh_quality(octa);
+  EXPECT_NEAR(flat.sharp_edge_share, 8.0 / 12.0, 1e-12);
+  EXPECT_NEAR(flat.folded_edge_share, 4.0 / 12.0, 1e-12);
 }
