@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_stats.h"
 #include "modeling/edge_graph_deformer.h"
 #include "modeling/mesh_io.h"
 #include "modeling/allocator_policy.h"
@@ -42,10 +43,7 @@ double cpu_ms() {
   return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
 }
 double ms(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
+using ps::bench::median;
 
 struct Case {
   std::string mesh;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_stats.h"
 #include "modeling/contour_io.h"
 #include "modeling/gltf_export.h"
 #include "modeling/mesh_io.h"
@@ -29,8 +30,7 @@ double median_ms(int reps, const std::function<void()>& f) {
     f();
     t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a).count());
   }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
+  return ps::bench::median(std::move(t));
 }
 
 }  // namespace

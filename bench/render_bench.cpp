@@ -14,6 +14,7 @@
 #include <ctime>
 #include <vector>
 
+#include "bench/bench_stats.h"
 #include "engine/frame_geometry.h"
 #include "engine/renderer.h"
 #include "engine/scene.h"
@@ -30,10 +31,7 @@ struct Figures {
   double median_ms, min_ms, median_cpu_ms;
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using ps::bench::median;
 
 // CPU time of the whole process, all threads (lavapipe's rasterizer threads included).
 double process_cpu_ms() {

@@ -12,15 +12,11 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_stats.h"
 #include "modeling/face_intersections.h"
 #include "modeling/mesh_io.h"
 
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 struct Timed {
   double ms = 0;
@@ -35,7 +31,7 @@ Timed time_query(const ps::TriMesh& m, const std::vector<int>& query, ps::BroadP
     pairs = ps::intersecting_face_pairs(m.vertices, m.faces, query, bp).size();
     t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
-  return {median(t), pairs};
+  return {ps::bench::median(t), pairs};
 }
 
 }  // namespace

@@ -405,9 +405,9 @@ class FaceGrid {
       total += range[idx(f)].count();
       if (total > 16 * q + 64) return false;  // boxes spanning many cells: the sweep is better
     }
-    // Sorted by (cell, face). The faces go in increasing order, so a stable sort by cell
-    // suffices: a radix sort of (cell, entry number) packed into 64 bits when they fit (the
-    // linear cell index of the grid's own extent), std::sort otherwise.
+    // Grouped by cell: a radix sort of (cell, entry number) packed into 64 bits when they fit
+    // (the linear cell index of the grid's own extent), std::sort otherwise. The pair loop below
+    // then orders each cell's entries by x, and the lookups of the other faces rely on that.
     std::vector<std::uint64_t> cell_of_entry;
     std::vector<int> face_of_entry;
     cell_of_entry.reserve(total);
