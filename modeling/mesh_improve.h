@@ -45,6 +45,15 @@ struct ImproveOptions {
   // only in places it left a worse mesh than undoing the few crossing moves.
   enum class ClearanceLimit { kOff, kAuto, kAlways };
   ClearanceLimit clearance_limit = ClearanceLimit::kAuto;
+  // Smoothing: the curvature-evening move is limited to the size of the mean-curvature move
+  // (SmoothOptions::limit_evening). kAuto: from the round after one whose smoothing steps
+  // undid fold moves for more than 1 in 20 vertex-steps (measured per vertex and step: 0 on
+  // clean staircases, 0.02-0.12 on hand_ok, about 0.1 on Skull-20, 0.2-0.4 on oblique stress
+  // unions); kAlways: every round; kOff: never. On the rough inputs the limit gives smoother,
+  // smaller meshes, 3x faster (docs/mesh-improvement.md, "Limiting the evening flow on rough
+  // meshes"); on clean ones it would double the profile error, so it waits for the sign.
+  enum class EveningLimit { kOff, kAuto, kAlways };
+  EveningLimit evening_limit = EveningLimit::kAuto;
   // Refinement: alpha grows linearly to its value over the first ramp_rounds rounds (0: no ramp).
   int ramp_rounds = 8;
   // Refinement: no splits beyond this many faces (a guard against a tiny curve spacing).
@@ -78,6 +87,7 @@ struct ImproveReport {
   int splits = 0, flips = 0;
   int smoothing_rollbacks = 0;   // vertex moves undone (a face turned over, or an intersection)
   int clearance_limits = 0;      // smoothing moves shortened by the clearance limit
+  int evening_limited_from = -1;  // first round smoothed with the evening limit (-1: none)
   int crossing_rollbacks = 0;    // of smoothing_rollbacks: moves undone because faces crossed
   double ms = 0;                 // wall time of the whole call
   int refinement_rollbacks = 0;  // refinements undone after an intersection (redone with flips

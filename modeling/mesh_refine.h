@@ -44,6 +44,7 @@ struct RefineOptions {
 struct RefineStats {
   int splits = 0, flips = 0, passes = 0;
   int valence_refusals = 0;  // split tests refused by the valence limit (a face counts once per pass)
+  int sliver_refusals = 0;   // split tests refused because the face is a sliver (same count)
 };
 
 // Sigma per vertex (#V); fixed is #V flags (nonzero: curve vertex).
@@ -58,9 +59,10 @@ struct FlipLock {
 };
 
 // Refines in place. fixed grows with the vertex count (new vertices are free). With `flipped`,
-// it comes back with one flag per face of the result: 1 where the face came from a flip (or is
-// part of a face that did, after splits), 0 where the face is a face of the input or part of
-// one, split at centroids only, so lying in that face's plane up to the centroid's rounding.
+// it comes back with one flag per face of the result: 1 where the face came from a flip or a
+// split (a centroid split keeps its face's plane only up to rounding, which on needles was
+// enough to cross a neighbour), 0 where the face is a face of the input, untouched. Slivers
+// (twice the area below 1e-10 times the longest edge squared) are never split.
 RefineStats refine_mesh(HalfedgeMesh& mesh, std::vector<std::uint8_t>& fixed,
                         const FlipLock& lock = {}, const RefineOptions& options = {},
                         std::vector<std::uint8_t>* flipped = nullptr);

@@ -1,3 +1,4 @@
+#include <cmath>
 #include "modeling/mesh_smooth.h"
 
 #include <algorithm>
@@ -184,6 +185,10 @@ std::vector<Vec3> Smoother::next_positions(const HalfedgeMesh& m) {
           if (edge2_[idx(j)] > 0.0) mean += kappa_[idx(j)] / edge2_[idx(j)];
         }
         normal_move -= edge2_[idx(v)] * mean / (e - b);
+        if (options_.limit_evening) {
+          const double bound = std::abs(kappa_[idx(v)]);
+          normal_move = std::clamp(normal_move, -bound, bound);
+        }
       }
       const Vec3 tangential = delta_[idx(v)] - kappa_[idx(v)] * nrm;
       out[idx(v)] = m.position(v) + options_.normal_step * normal_move * nrm + options_.tangential_step * tangential;

@@ -33,6 +33,12 @@ struct SmoothOptions {
   NormalFlow flow = NormalFlow::kCurvatureEvening;
   double normal_step = 0.4;      // lambda
   double tangential_step = 0.5;  // eps of Eq. 4.3
+  // kCurvatureEvening only: the evening's normal move is kept within the mean-curvature move's
+  // size, |tau| <= lambda |kappa_i|. On rough meshes (needles, creases: curvature estimates that
+  // are mostly noise) the unlimited evening folds faces at a high rate and leaves the surface
+  // crinkled; on clean ones it slows the rounding of flat parts (docs/mesh-improvement.md,
+  // "Limiting the evening flow on rough meshes"). ImproveOptions::evening_limit turns it on.
+  bool limit_evening = false;
 };
 
 // One step of Eq. 4.3: returns the new positions (#V; fixed and isolated vertices unchanged).
