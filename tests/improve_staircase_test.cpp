@@ -346,13 +346,23 @@ TEST(ImproveStaircase, BadInputIsRefusedWithAReason) {
 // Splits with no flip to follow them (flips forbidden) on a flattened staircase make needles, and
 // smoothing them makes the surface rougher: worse on both figures, so the input comes back
 // unchanged. The same input with the default options improves and is returned improved.
-TEST(ImproveStaircase, AResultWorseOnBothFiguresGivesBackTheInput) {
+static JaggyInput flattened_staircase() {
   JaggyInput in = staircase(6, 48);
   for (auto& v : in.mesh.vertices) v.y() *= 0.1;
+  return in;
+}
+
+static ImproveOptions needle_making_options() {
   ImproveOptions needles;
   needles.min_length_fraction = 0;
   needles.max_flip_normal_angle_deg = 0;
   needles.ramp_rounds = 0;
+  return needles;
+}
+
+TEST(ImproveStaircase, AResultWorseOnBothFiguresGivesBackTheInput) {
+  const JaggyInput in = flattened_staircase();
+  ImproveOptions needles = needle_making_options();
   // Unlimited evening flow: with the limit (the default kAuto) this input comes out better on
   // both figures (RoughSmoothingLimitsTheEveningFlow below).
   needles.evening_limit = ImproveOptions::EveningLimit::kOff;
@@ -378,12 +388,8 @@ TEST(ImproveStaircase, AResultWorseOnBothFiguresGivesBackTheInput) {
 // one; the result then beats its input on both figures (unlimited it was worse on both). A clean
 // staircase never shows the sign and keeps the unlimited flow, bit for bit.
 TEST(ImproveStaircase, RoughSmoothingLimitsTheEveningFlow) {
-  JaggyInput in = staircase(6, 48);
-  for (auto& v : in.mesh.vertices) v.y() *= 0.1;
-  ImproveOptions needles;
-  needles.min_length_fraction = 0;
-  needles.max_flip_normal_angle_deg = 0;
-  needles.ramp_rounds = 0;
+  const JaggyInput in = flattened_staircase();
+  const ImproveOptions needles = needle_making_options();
   ImproveReport rep;
   const TriMesh out = improved(in, &rep, needles);
   EXPECT_EQ(rep.evening_limited_from, 0);
