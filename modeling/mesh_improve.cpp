@@ -172,15 +172,15 @@ Result<TriMesh> improve_unit_scale(const TriMesh& mesh, const std::vector<bool>&
       RefineStats rs;
       for (int attempt = 0; refine; ++attempt) {
         auto t0 = Clock::now();
-        std::vector<std::uint8_t> flipped;
-        rs = refine_mesh(m, fixed, lock, ropt, &flipped);
+        std::vector<std::uint8_t> changed;  // faces made by flips or splits
+        rs = refine_mesh(m, fixed, lock, ropt, &changed);
         rep.refine_ms += ms_since(t0);
         if (!options.check_self_intersections) break;
         t0 = Clock::now();
-        std::vector<int> from_flips;
-        for (std::size_t f = 0; f < flipped.size(); ++f)
-          if (flipped[f]) from_flips.push_back(static_cast<int>(f));
-        const auto pairs = intersecting_face_pairs(m.positions, m.faces, from_flips);
+        std::vector<int> new_faces;
+        for (std::size_t f = 0; f < changed.size(); ++f)
+          if (changed[f]) new_faces.push_back(static_cast<int>(f));
+        const auto pairs = intersecting_face_pairs(m.positions, m.faces, new_faces);
         rep.check_ms += ms_since(t0);
         if (pairs.empty()) break;
         ++rep.refinement_rollbacks;

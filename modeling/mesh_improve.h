@@ -46,8 +46,9 @@ struct ImproveOptions {
   enum class ClearanceLimit { kOff, kAuto, kAlways };
   ClearanceLimit clearance_limit = ClearanceLimit::kAuto;
   // Smoothing: the curvature-evening move is limited to the size of the mean-curvature move
-  // (SmoothOptions::limit_evening). kAuto: from the round after one whose smoothing steps
-  // undid fold moves for more than 1 in 20 vertex-steps (measured per vertex and step: 0 on
+  // (SmoothOptions::limit_evening). kAuto: from the first round whose smoothing steps undid
+  // fold moves for more than 1 in 20 vertex-steps, that round smoothed again with the limit, and
+  // in every later round (rates measured per vertex and step: 0 on
   // clean staircases, 0.02-0.12 on hand_ok, about 0.1 on Skull-20, 0.2-0.4 on oblique stress
   // unions); kAlways: every round; kOff: never. On the rough inputs the limit gives smoother,
   // smaller meshes, 3x faster (docs/mesh-improvement.md, "Limiting the evening flow on rough

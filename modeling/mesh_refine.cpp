@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "modeling/mesh_smooth.h"
+
 namespace ps {
 namespace {
 
@@ -203,7 +205,7 @@ int relax_all_edges(HalfedgeMesh& mesh, const FlipLock& lock, const RefineOption
 
 // === Refinement: split + relax until no face splits
 RefineStats refine_mesh(HalfedgeMesh& m, std::vector<std::uint8_t>& fixed, const FlipLock& lock,
-                        const RefineOptions& o, std::vector<std::uint8_t>* flipped) {
+                        const RefineOptions& o, std::vector<std::uint8_t>* changed) {
   RefineStats stats;
   std::vector<double> sigma = length_attributes(m, fixed);
   if (o.min_length > 0)
@@ -225,8 +227,8 @@ RefineStats refine_mesh(HalfedgeMesh& m, std::vector<std::uint8_t>& fixed, const
     const std::size_t k = idx(v);
     return k < base.size() ? std::max(o.max_valence, 2 * base[k]) : o.max_valence;
   };
-  if (flipped) flipped->assign(idx(m.num_faces()), 0);
-  relaxer.track_flips(flipped);
+  if (changed) changed->assign(idx(m.num_faces()), 0);
+  relaxer.track_flips(changed);
   // The geometry changed everywhere since the last refinement (smoothing): relax every edge
   // first; later passes only need the edges around the new faces.
   relaxer.relax_all();
@@ -249,17 +251,13 @@ RefineStats refine_mesh(HalfedgeMesh& m, std::vector<std::uint8_t>& fixed, const
         }
       }
       if (!split) continue;
-      // A sliver (twice its area below 1e-10 times its longest edge squared, the collapse test of
-      // revert_folded_faces) is not split: its centroid lies on its long edge up to rounding, and
-      // its children lie along the neighbouring faces' edges, which the exact check counts as
-      // crossings (stress seed 418: every round from the second refined twice, then not at all).
-      {
-        const Vec3 e0 = m.position(fc[1]) - m.position(fc[0]), e1 = m.position(fc[2]) - m.position(fc[0]);
-        const double longest2 = std::max({e0.squaredNorm(), e1.squaredNorm(), (e1 - e0).squaredNorm()});
-        if (e0.cross(e1).norm() < 1e-10 * longest2) {
-          ++stats.sliver_refusals;
-          continue;
-        }
+      // A sliver (the fold checks' collapse test, degenerate_face) is not split: its centroid
+      // lies on its long edge up to rounding, and its children lie along the neighbouring faces'
+      // edges, which the exact check counts as crossings (stress seed 418: every round from the
+      // second refined twice, then not at all).
+      if (degenerate_face(m.face_normal(f), fc, m.positions)) {
+        ++stats.sliver_refusals;
+        continue;
       }
       // Valence limit (RefineOptions::max_valence): where flips cannot follow the splits (a
       // crease, a pinch, locked flips), each split of a face around a vertex adds one more
@@ -275,14 +273,14 @@ RefineStats refine_mesh(HalfedgeMesh& m, std::vector<std::uint8_t>& fixed, const
         for (int v : fc) ++valence[idx(v)];
         valence.push_back(3);
       }
-      if (flipped) {
-        flipped->resize(idx(m.num_faces()), 0);
-        // Split faces are checked too, not only flipped ones: a split keeps its face's plane
+      if (changed) {
+        changed->resize(idx(m.num_faces()), 0);
+        // Split faces are marked too, not only flipped ones: a split keeps its face's plane
         // only up to the centroid's rounding (on stress seed 418 split needles crossed their
         // neighbours, and no smoothing move was there for the later check to find them). Same
         // outputs where nothing crossed; the check's time is about the same (the flipped faces
         // were most of the new ones already).
-        (*flipped)[idx(f)] = (*flipped)[idx(m.num_faces() - 2)] = (*flipped)[idx(m.num_faces() - 1)] = 1;
+        (*changed)[idx(f)] = (*changed)[idx(m.num_faces() - 2)] = (*changed)[idx(m.num_faces() - 1)] = 1;
       }
       sigma.push_back(sc);
       fixed.push_back(0);
@@ -300,7 +298,7 @@ RefineStats refine_mesh(HalfedgeMesh& m, std::vector<std::uint8_t>& fixed, const
     relaxer.relax_from(touched);
   }
   stats.flips = relaxer.flips();
-  if (flipped) flipped->resize(idx(m.num_faces()), 0);
+  if (changed) changed->resize(idx(m.num_faces()), 0);
   return stats;
 }
 

@@ -58,14 +58,14 @@ struct FlipLock {
   bool locks(const Box3& quad) const;
 };
 
-// Refines in place. fixed grows with the vertex count (new vertices are free). With `flipped`,
+// Refines in place. fixed grows with the vertex count (new vertices are free). With `changed`,
 // it comes back with one flag per face of the result: 1 where the face came from a flip or a
 // split (a centroid split keeps its face's plane only up to rounding, which on needles was
 // enough to cross a neighbour), 0 where the face is a face of the input, untouched. Slivers
 // (twice the area below 1e-10 times the longest edge squared) are never split.
 RefineStats refine_mesh(HalfedgeMesh& mesh, std::vector<std::uint8_t>& fixed,
                         const FlipLock& lock = {}, const RefineOptions& options = {},
-                        std::vector<std::uint8_t>* flipped = nullptr);
+                        std::vector<std::uint8_t>* changed = nullptr);
 
 // Relaxes every edge until no flip applies (or a cap of 8 flips per edge is reached); returns
 // the number of flips. Exposed for tests.

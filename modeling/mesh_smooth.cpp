@@ -1,7 +1,7 @@
-#include <cmath>
 #include "modeling/mesh_smooth.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -17,20 +17,12 @@ int as_int(std::size_t i) { return static_cast<int>(i); }
 // own slot, so the results are bit-identical to a sequential run.
 constexpr std::size_t kMinParallel = 4096;
 
-// Twice the area is below 1e-10 times the squared longest edge (angles of about 1e-10 rad).
-bool degenerate(const Vec3& n, const Face& f, const std::vector<Vec3>& p) {
-  double longest = 0;
-  for (int k = 0; k < 3; ++k)
-    longest = std::max(longest, (p[idx(f[idx(k)])] - p[idx(f[idx((k + 1) % 3)])]).squaredNorm());
-  return !(n.squaredNorm() > 1e-20 * longest * longest);
-}
-
 // A face whose normal went from n0 to n turned over, or collapsed. A face that was already
 // degenerate may stay so (the step may be what repairs it).
 bool face_folded(const Vec3& n0, const Vec3& n, const std::vector<Vec3>& p0, const Face& f,
                  const std::vector<Vec3>& p) {
-  if (n.dot(n0) > 0.0 && !degenerate(n, f, p)) return false;  // the common case first
-  return !degenerate(n0, f, p0);
+  if (n.dot(n0) > 0.0 && !degenerate_face(n, f, p)) return false;  // the common case first
+  return !degenerate_face(n0, f, p0);
 }
 
 // Face f of m turned over or collapsed since `before` (its normal then computed from `before`).
@@ -120,6 +112,14 @@ int revert_from(HalfedgeMesh& m, const std::vector<Vec3>& before, std::vector<in
 }
 
 }  // namespace
+
+// Twice the area is below 1e-10 times the squared longest edge (angles of about 1e-10 rad).
+bool degenerate_face(const Vec3& twice_area_normal, const Face& f, const std::vector<Vec3>& p) {
+  double longest = 0;
+  for (int k = 0; k < 3; ++k)
+    longest = std::max(longest, (p[idx(f[idx(k)])] - p[idx(f[idx((k + 1) % 3)])]).squaredNorm());
+  return !(twice_area_normal.squaredNorm() > 1e-20 * longest * longest);
+}
 
 Smoother::Smoother(const HalfedgeMesh& m, const std::vector<std::uint8_t>& fixed, const SmoothOptions& o)
     : options_(o), fixed_(fixed) {

@@ -41,6 +41,11 @@ struct SmoothOptions {
   bool limit_evening = false;
 };
 
+// The collapse test of the fold checks: twice the face's area (the length of `twice_area_normal`,
+// its unnormalised normal) is below 1e-10 times its squared longest edge, angles of about 1e-10
+// rad, in `positions`. Refinement uses it too: such a sliver is not split (mesh_refine.h).
+bool degenerate_face(const Vec3& twice_area_normal, const Face& f, const std::vector<Vec3>& positions);
+
 // One step of Eq. 4.3: returns the new positions (#V; fixed and isolated vertices unchanged).
 std::vector<Vec3> smooth_step(const HalfedgeMesh& mesh, const std::vector<std::uint8_t>& fixed,
                               const SmoothOptions& options = {});

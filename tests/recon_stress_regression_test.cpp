@@ -296,8 +296,8 @@ INSTANTIATE_TEST_SUITE_P(MixedStressThinPinches, RoundingRepairSeed,
 // (2026-12-07, with the evening limit and before the fix): refinement split needle faces whose
 // rounded centroids put the children across their neighbours, and only flipped faces were checked
 // after refinement (docs/mesh-improvement.md, "Limiting the evening flow on rough meshes"). With
-// the improvement on, as the command runs by default. About 1.5-3 s each in a release build and
-// minutes under the sanitizers, so normal builds only.
+// the improvement on, as the command runs by default. 3 and 8 s in a release build and minutes
+// under the sanitizers, so normal builds only.
 #if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
 class ImprovedStressSeed : public ::testing::TestWithParam<int> {};
 
