@@ -832,7 +832,11 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
                       "mean smallest angle %.1f -> %.1f deg, RMS dihedral %.1f -> %.1f deg",
                       irep.quality_in.mean_min_angle_deg, irep.quality_out.mean_min_angle_deg,
                       irep.quality_in.rms_dihedral_deg, irep.quality_out.rms_dihedral_deg);
-        rep.warnings.push_back(std::string("mesh improvement made the surface worse (") + figures +
+        const std::string when = irep.gave_up_after_round >= 0
+                                     ? ", given up after round " + std::to_string(irep.gave_up_after_round + 1) +
+                                           " of " + std::to_string(io.iterations)
+                                     : std::string();
+        rep.warnings.push_back(std::string("mesh improvement made the surface worse (") + figures + when +
                                "); the unimproved surface was kept");
       } else if (improved) {
         mesh = std::move(*improved);

@@ -374,10 +374,23 @@ TEST(ImproveStaircase, AResultWorseOnBothFiguresGivesBackTheInput) {
   EXPECT_GT(rep.faces_out, rep.faces_in);  // it did refine; the result was dropped
   EXPECT_EQ(out.faces, in.mesh.faces);
   EXPECT_EQ(out.vertices, in.mesh.vertices);
+  // It was worse on both figures after round 1 already, and stopped there (the default); run to
+  // the end, it is dropped all the same, after five times the refinement.
+  EXPECT_EQ(rep.gave_up_after_round, 1);
+  ImproveOptions to_the_end = needles;
+  to_the_end.give_up_after_round = -1;
+  ImproveReport full;
+  const TriMesh out_full = improved(in, &full, to_the_end);
+  EXPECT_TRUE(full.kept_input);
+  EXPECT_EQ(full.gave_up_after_round, -1);
+  EXPECT_GT(full.faces_out, rep.faces_out);
+  EXPECT_EQ(out_full.vertices, in.mesh.vertices);
+  EXPECT_EQ(out_full.faces, in.mesh.faces);
 
   ImproveReport good;
   const TriMesh better = improved(in, &good);
   EXPECT_FALSE(good.kept_input);
+  EXPECT_EQ(good.gave_up_after_round, -1);
   EXPECT_GT(better.faces.size(), in.mesh.faces.size());
   EXPECT_GT(good.quality_out.mean_min_angle_deg, good.quality_in.mean_min_angle_deg);
   EXPECT_LT(good.quality_out.rms_dihedral_deg, good.quality_in.rms_dihedral_deg);
