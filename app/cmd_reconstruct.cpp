@@ -25,6 +25,7 @@ namespace {
 struct Options {
   std::string input, output, report, edits;
   bool no_improve = false;
+  int improve_rounds = 10;
   bool repair = false;
   int threads = 0;
   bool quiet = false;
@@ -61,6 +62,7 @@ int run(const Options& o) {
 
   ps::ReconstructOptions ro;
   ro.improve = !o.no_improve;
+  ro.improve_iterations = o.improve_rounds;
   ro.threads = o.threads;
   // --threads bounds every parallel loop of the command (the zone unions, and the improvement's
   // and the final checks' self-intersection tests), not only the reconstructor's own.
@@ -126,6 +128,7 @@ int run(const Options& o) {
                 {"union_by_box", rr.zones_filled}, {"union_in_2d", rr.zones_stacked}};
   j["primitives"] = rr.primitives;
   j["topology_edits"] = edits.size();
+  j["improve_rounds"] = o.no_improve ? 0 : o.improve_rounds;
   // read (and --repair), the reconstructor's stages and total, then the command's own checks of
   // the result (topology, self-intersection, curve distance) and the mesh file write.
   j["timings_ms"] = {{"read", read_ms}, {"checks", checks_ms}, {"write", write_ms}, {"validate", rr.timings.validate_ms}, {"partition", rr.timings.partition_ms},
@@ -153,7 +156,13 @@ void setup(CLI::App& root) {
   cmd->add_option("--report", opts->report, "Write the JSON report here instead of standard output");
   cmd->add_option("--edits", opts->edits,
                   "Topology edits to apply (JSON: {\"edits\": [{\"kind\": \"join\"|\"split\", \"stroke\": [[x,y,z],...]}]})");
-  cmd->add_flag("--no-improve", opts->no_improve, "Skip refinement and smoothing");
+  auto* no_improve = cmd->add_flag("--no-improve", opts->no_improve, "Skip refinement and smoothing");
+  // Fewer rounds trade smoothness for time on dense inputs (each round refines and smooths the
+  // whole surface and checks it for self-intersections; docs/mesh-improvement.md).
+  cmd->add_option("--improve-rounds", opts->improve_rounds,
+                  "Rounds of refinement and smoothing, 1 to 100 (default 10, as in the thesis)")
+      ->check(CLI::Range(1, 100))
+      ->excludes(no_improve);
   cmd->add_flag("--repair", opts->repair,
                 "Split curves that touch or cross themselves into simple curves (traced contours; docs/formats.md)");
   cmd->add_option("--threads", opts->threads, "Worker threads (0: all)");

@@ -821,6 +821,9 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
     if (g_improve_hook) {
       ImproveOptions io;
       io.iterations = options_.improve_iterations;
+      // The coarse-to-fine ramp of alpha takes 8 of the thesis's 10 rounds; other counts keep
+      // that share, so fewer rounds still reach the full density (docs/mesh-improvement.md).
+      io.ramp_rounds = (8 * io.iterations + 5) / 10;
       ImproveReport irep;
       auto improved = g_improve_hook(mesh, rep.curve_vertex, rep.curve_edges, io, &irep);
       rep.timings.improve_refine_ms = irep.refine_ms;

@@ -92,4 +92,26 @@ python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['closed'] 
 "$bin" convert --repair "$tmp/spike.json" "$tmp/spike-repaired.json" 2> "$tmp/err"
 "$bin" reconstruct "$tmp/spike-repaired.json" -o "$tmp/spike2.obj" -q --no-improve > /dev/null
 if "$bin" reconstruct "$tmp/good.json" -o "$tmp/out.xyz" 2> "$tmp/err"; then echo "FAIL: bad extension accepted"; exit 1; fi
+# --improve-rounds: the number of improvement rounds, in the report; out of range or together
+# with --no-improve it is refused, naming the option, and nothing is written.
+"$bin" reconstruct "$tmp/good.json" -o "$tmp/two.obj" -q --improve-rounds 2 --report "$tmp/two.json"
+"$bin" reconstruct "$tmp/good.json" -o "$tmp/ten.obj" -q --report "$tmp/ten.json"
+python3 - "$tmp/two.json" "$tmp/ten.json" "$tmp/good-report.json" <<'PY'
+import json, sys
+two, ten, none = (json.load(open(p)) for p in sys.argv[1:4])
+assert two["improve_rounds"] == 2 and ten["improve_rounds"] == 10 and none["improve_rounds"] == 0, (two, ten, none)
+for r in (two, ten):
+    assert r["closed"] and r["manifold"] and not r["self_intersecting"], r
+    assert r["max_curve_distance_relative"] <= 1e-6, r
+# Refinement grows the mesh round by round (alpha ramps up over the first rounds).
+assert none["faces"] < two["faces"] < ten["faces"], (none["faces"], two["faces"], ten["faces"])
+PY
+for bad in "--improve-rounds 0" "--improve-rounds 101" "--improve-rounds x" "--improve-rounds 3 --no-improve"; do
+  rm -f "$tmp/out.obj"
+  # shellcheck disable=SC2086
+  if "$bin" reconstruct "$tmp/good.json" -o "$tmp/out.obj" -q $bad 2> "$tmp/err"; then echo "FAIL: $bad accepted"; exit 1; fi
+  grep -q -- "--improve-rounds" "$tmp/err" || { echo "FAIL: $bad: message does not name the option:"; cat "$tmp/err"; exit 1; }
+  [ ! -e "$tmp/out.obj" ] || { echo "FAIL: $bad left an output file"; exit 1; }
+  echo "ok: $bad -> $(head -c 160 "$tmp/err")"
+done
 echo "reconstruct cli ok"
