@@ -844,24 +844,34 @@ std::string format_csl(const SectionSet& set) {
     for (std::size_t c : ids) nv += set.curves[c].points.size();
     s += "\n" + std::to_string(p + 1) + " " + std::to_string(nv) + " " + std::to_string(ids.size()) + " " +
          num(pl.normal.x()) + " " + num(pl.normal.y()) + " " + num(pl.normal.z()) + " " + num(-pl.offset) + "\n\n";
-    // Nesting on the plane: depth = number of curves containing the curve's first point;
-    // parent = the deepest of those.
-    Vec3 u, v;
-    pl.basis(u, v);
+    // Nesting on the plane: depth = number of curves containing most of the curve's vertices;
+    // parent = the deepest of those. The same test and the same 2D frame as the reader's check
+    // of hole flags (components_agree_with_nesting), so a written hole reads back as a hole.
+    // (Until 2026-12-07 the first vertex decided; csl_fuzz found a curve whose first vertex lay
+    // on another curve's edge: written as its hole, and read back the two were united.)
+    Plane unit = pl;
+    if (const double len = pl.normal.norm(); len > 0) {
+      unit.normal /= len;
+      unit.offset /= len;
+    }
+    const PlaneFrame frame = plane_frame(unit);
     std::vector<std::vector<Vec2>> flat;
     for (std::size_t c : ids) {
       std::vector<Vec2> f;
-      for (const auto& q : set.curves[c].points) f.emplace_back(q.dot(u), q.dot(v));
+      for (const auto& q : set.curves[c].points) f.push_back(frame.to_2d(q));
       flat.push_back(std::move(f));
     }
+    std::vector<std::vector<char>> inside(ids.size(), std::vector<char>(ids.size(), 0));
     std::vector<int> depth(ids.size(), 0), parent(ids.size(), -1);
     for (std::size_t a = 0; a < ids.size(); ++a)
       for (std::size_t b = 0; b < ids.size(); ++b)
-        if (a != b && flat[a].size() >= 1 && flat[b].size() >= 3 && point_in_polygon_2d(flat[a][0], flat[b])) ++depth[a];
+        if (a != b && !flat[a].empty() && flat[b].size() >= 3 && loop_mostly_inside(flat[a], flat[b])) {
+          inside[a][b] = 1;
+          ++depth[a];
+        }
     for (std::size_t a = 0; a < ids.size(); ++a)
       for (std::size_t b = 0; b < ids.size(); ++b)
-        if (a != b && flat[b].size() >= 3 && point_in_polygon_2d(flat[a][0], flat[b]) &&
-            (parent[a] < 0 || depth[b] > depth[static_cast<std::size_t>(parent[a])]))
+        if (inside[a][b] && (parent[a] < 0 || depth[b] > depth[static_cast<std::size_t>(parent[a])]))
           parent[a] = static_cast<int>(b);
     for (std::size_t c : ids)
       for (const auto& q : set.curves[c].points) s += num(q.x()) + " " + num(q.y()) + " " + num(q.z()) + "\n";

@@ -686,4 +686,6 @@ Result<std::vector<std::vector<Vec2>>> region_of_components(const std::vector<Cs
   return points_of(out);
 }
 
+bool loop_mostly_inside(const std::vector<Vec2>& a, const std::vector<Vec2>& b) { return mostly_inside(a, b); }
+
 }  // namespace ps

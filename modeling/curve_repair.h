@@ -92,6 +92,11 @@ struct CslComponent {
 // (validation refuses them, --repair splits or merges them by nesting).
 bool components_agree_with_nesting(const std::vector<CslComponent>& comps);
 
+// The nesting test used there: most of loop a's vertices (a sample of 16; those on b's boundary
+// are not counted) lie inside loop b. The CSL writer uses it too, so that what it writes as holes
+// is what the reader takes for holes.
+bool loop_mostly_inside(const std::vector<Vec2>& a, const std::vector<Vec2>& b);
+
 // The boundary curves of the union described above (exact 2D Booleans; pinches split and
 // separated as in repair_section_curves). A component that crosses itself is first split as
 // repair_closed_curve does (non-zero winding).
