@@ -440,12 +440,12 @@ int main(int argc, char** argv) {
   }
   std::fprintf(stderr, "\n");
 
+  std::string mode = a.improve ? "with mesh improvement" : "without mesh improvement (--no-improve)";
+  if (a.improve && a.improve_rounds > 0) mode += ", " + std::to_string(a.improve_rounds) + " rounds";
   std::printf("## Reconstruction stress: %d cases, seeds %llu..%llu, %s\n\n", a.cases,
               static_cast<unsigned long long>(a.first_seed),
               static_cast<unsigned long long>(a.first_seed + static_cast<std::uint64_t>(a.cases) - 1),
-              !a.improve                ? "without mesh improvement (--no-improve)"
-              : a.improve_rounds > 0    ? ("with mesh improvement, " + std::to_string(a.improve_rounds) + " rounds").c_str()
-                                        : "with mesh improvement");
+              mode.c_str());
   std::printf("2..%d orthogonal planes per case, curves of %d..%d points; each case run with --threads %d%s.\n\n",
               a.max_planes, a.min_points, a.max_points, a.threads, a.threads == 0 ? " (all cores)" : "");
   std::printf("| family | ok | refused | violation | crash | hang |\n|---|---:|---:|---:|---:|---:|\n");

@@ -472,17 +472,22 @@ struct CslComponentInfo {
 // multi-material file: organs inside organs, none flagged as holes), the plane's curves become
 // the boundary of the union of its labelled components (curve_repair.h). Elsewhere nothing
 // changes: nesting already carries the meaning (rule 2).
+// The 2D frame of a plane scaled to a unit normal: the reader's check of hole flags and the
+// writer's nesting both work in it, so that they agree (format_csl).
+PlaneFrame unit_plane_frame(const Plane& pl) {
+  Plane unit = pl;
+  if (const double len = pl.normal.norm(); len > 0) {
+    unit.normal /= len;
+    unit.offset /= len;
+  }
+  return plane_frame(unit);
+}
+
 void read_csl_labels(SectionSet& set, const std::vector<CslComponentInfo>& info, const std::string& name, Warnings& w) {
   std::vector<std::vector<CrossSection>> by_plane(set.planes.size());
   std::vector<std::vector<CslComponent>> comps(set.planes.size());
   std::vector<PlaneFrame> frames;
-  for (const Plane& pl : set.planes) {
-    Plane unit = pl;
-    const double len = pl.normal.norm();
-    unit.normal /= len;
-    unit.offset /= len;
-    frames.push_back(plane_frame(unit));
-  }
+  for (const Plane& pl : set.planes) frames.push_back(unit_plane_frame(pl));
   for (std::size_t c = 0; c < set.curves.size(); ++c) {
     const auto p = static_cast<std::size_t>(info[c].plane);
     CslComponent k;
@@ -849,12 +854,7 @@ std::string format_csl(const SectionSet& set) {
     // of hole flags (components_agree_with_nesting), so a written hole reads back as a hole.
     // (Until 2026-12-07 the first vertex decided; csl_fuzz found a curve whose first vertex lay
     // on another curve's edge: written as its hole, and read back the two were united.)
-    Plane unit = pl;
-    if (const double len = pl.normal.norm(); len > 0) {
-      unit.normal /= len;
-      unit.offset /= len;
-    }
-    const PlaneFrame frame = plane_frame(unit);
+    const PlaneFrame frame = unit_plane_frame(pl);
     std::vector<std::vector<Vec2>> flat;
     for (std::size_t c : ids) {
       std::vector<Vec2> f;

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <numbers>
 #include <unordered_map>
 #include <unordered_set>
 
+#include "modeling/content_cache.h"
 #include "modeling/face_intersections.h"
 #include "modeling/halfedge_mesh.h"
 #include "modeling/mesh_refine.h"
@@ -44,18 +44,22 @@ FaceKey face_key(const HalfedgeMesh& m, int f) {
 }
 struct FaceKeyHash {
   std::size_t operator()(const FaceKey& k) const {
-    std::size_t h = 0x9E3779B97F4A7C15ull;
+    ContentHash h;
     for (const Vec3& p : k)
       for (int c = 0; c < 3; ++c) {
-        std::uint64_t bits;
         const double x = p[c] == 0.0 ? 0.0 : p[c];  // -0 and +0 alike, as == has them
-        std::memcpy(&bits, &x, sizeof bits);
-        h = (h ^ bits) * 0x100000001B3ull;
-        h ^= h >> 29;
+        h.bytes(&x, sizeof x);
       }
-    return h;
+    return static_cast<std::size_t>(h.h);
   }
 };
+
+// The kept-input test (improve_mesh) and the early give-up (ImproveOptions) ask the same: a
+// smaller mean smallest angle and a larger RMS dihedral than the input's.
+bool worse_on_both(const MeshQuality& q, const MeshQuality& in) {
+  return q.mean_min_angle_deg < in.mean_min_angle_deg && q.rms_dihedral_deg > in.rms_dihedral_deg;
+}
+
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
@@ -104,8 +108,7 @@ Result<TriMesh> improve_mesh(const TriMesh& mesh, const std::vector<bool>& fixed
   // thinner triangles). Both figures are scale-invariant.
   rep.quality_in = mesh_quality(mesh);
   rep.quality_out = mesh_quality(*out);
-  if (rep.quality_out.mean_min_angle_deg < rep.quality_in.mean_min_angle_deg &&
-      rep.quality_out.rms_dihedral_deg > rep.quality_in.rms_dihedral_deg) {
+  if (worse_on_both(rep.quality_out, rep.quality_in)) {
     rep.kept_input = true;
     *out = mesh;
   }
@@ -217,7 +220,7 @@ Result<TriMesh> improve_unit_scale(const TriMesh& mesh, const std::vector<bool>&
         // refinement checks, about 2 s, on faces mostly the same as the first attempt's.)
         std::vector<int> new_faces;
         for (std::size_t f = 0; f < changed.size(); ++f)
-          if (changed[f] && (clean_before.empty() || !clean_before.contains(face_key(m, static_cast<int>(f)))))
+          if (changed[f] && (attempt == 0 || !clean_before.contains(face_key(m, static_cast<int>(f)))))
             new_faces.push_back(static_cast<int>(f));
         const auto pairs = intersecting_face_pairs(m.positions, m.faces, new_faces);
         rep.check_ms += ms_since(t0);
@@ -390,8 +393,7 @@ Result<TriMesh> improve_unit_scale(const TriMesh& mesh, const std::vector<bool>&
 
     // === Early give-up: worse than the input on both figures after this round (options).
     if (it == options.give_up_after_round && it + 1 < options.iterations) {
-      const MeshQuality q = mesh_quality(m.to_trimesh());
-      if (q.mean_min_angle_deg < quality_in.mean_min_angle_deg && q.rms_dihedral_deg > quality_in.rms_dihedral_deg) {
+      if (worse_on_both(mesh_quality(m.to_trimesh()), quality_in)) {
         rep.gave_up_after_round = it;
         break;
       }
