@@ -4,7 +4,9 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
+#include <memory>
 
 #include "modeling/parallel_over.h"
 #include "modeling/point_triangle_distance.h"
@@ -17,13 +19,21 @@ std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 // === Uniform grid over the faces' boxes (rest positions)
 // Cells of the mean face extent; each face is listed in every cell its box overlaps (refined
 // meshes have faces of similar size, so that is a few cells each). CSR storage.
+//
+// The queries read the listed items of a few cells per moved vertex, hundreds of items in all on
+// a needle-soup refinement (stress seed 737: 2.2M items for 200k faces, 500-600 read per query,
+// over a gigabyte per call), so an item is kept to 16 bytes: the face, three flags and the face's
+// normal. The flags say whether the cell is the face's lowest cell along each axis, which is all
+// the ownership rule below needs (until 2026-12-07 the item held that cell's coordinates, 28
+// bytes; the items array went from 62 to 35 MB and is no longer zeroed before it is filled).
 class Grid {
  public:
   struct Item {
-    int face;
-    float nx, ny, nz;            // the face's unit rest normal
-    std::array<int, 3> lo_cell;  // the cell of its box's lowest corner
+    std::uint32_t key;  // face << 3 | first-cell flags (bit k: the face's lowest cell along axis k)
+    float nx, ny, nz;   // the face's unit rest normal
+    int face() const { return static_cast<int>(key >> 3); }
   };
+  static_assert(sizeof(Item) == 16);
 
   Grid(const std::vector<Vec3>& p, const std::vector<Face>& faces, const std::vector<Vec3>& normals) {
     Box3 all;
@@ -49,22 +59,24 @@ class Grid {
     inv_h_ = 1.0 / h;
     const std::size_t cells = static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]);
     start_.assign(cells + 1, 0);
+    // fn(cell, flags) for every cell of the box's range; flags as in Item::key.
     auto for_cells = [&](const Box3& b, auto&& fn) {
       const auto lo = cell_of(b.min), hi = cell_of(b.max);
       for (long z = lo[2]; z <= hi[2]; ++z)
         for (long y = lo[1]; y <= hi[1]; ++y)
-          for (long x = lo[0]; x <= hi[0]; ++x) fn(static_cast<std::size_t>((z * dims_[1] + y) * dims_[0] + x));
+          for (long x = lo[0]; x <= hi[0]; ++x)
+            fn(static_cast<std::size_t>((z * dims_[1] + y) * dims_[0] + x),
+               (x == lo[0] ? 1u : 0u) | (y == lo[1] ? 2u : 0u) | (z == lo[2] ? 4u : 0u));
     };
-    for (const Box3& b : boxes) for_cells(b, [&](std::size_t c) { ++start_[c + 1]; });
+    for (const Box3& b : boxes) for_cells(b, [&](std::size_t c, std::uint32_t) { ++start_[c + 1]; });
     for (std::size_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
-    items_.resize(start_[cells]);
+    items_.reset(new Item[start_[cells]]);  // every item is written below
     std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
     for (std::size_t f = 0; f < faces.size(); ++f) {
-      const auto lo = cell_of(boxes[f].min);
-      const Item item{static_cast<int>(f), static_cast<float>(normals[f].x()), static_cast<float>(normals[f].y()),
-                      static_cast<float>(normals[f].z()),
-                      {static_cast<int>(lo[0]), static_cast<int>(lo[1]), static_cast<int>(lo[2])}};
-      for_cells(boxes[f], [&](std::size_t c) { items_[fill[c]++] = item; });
+      const float nx = static_cast<float>(normals[f].x()), ny = static_cast<float>(normals[f].y()),
+                  nz = static_cast<float>(normals[f].z());
+      const std::uint32_t key = static_cast<std::uint32_t>(f) << 3;
+      for_cells(boxes[f], [&](std::size_t c, std::uint32_t flags) { items_[fill[c]++] = Item{key | flags, nx, ny, nz}; });
     }
   }
 
@@ -77,24 +89,37 @@ class Grid {
     return c;
   }
 
-  // fn(item) once for every face listed in a cell overlapping [lo, hi]: a face listed in several
-  // of those cells is reported by the first of them, the one holding the lowest corner of the
-  // intersection of its cell range with the query's.
+  // fn(item) once for every face listed in a cell overlapping [lo, hi] and not in a cell of
+  // `skip` (the cell range of an earlier query inside this one, or none): a face listed in
+  // several of those cells is reported by one of them, the one holding the lowest corner of the
+  // intersection of its cell range with the query's. Along an axis that cell is the query's first
+  // cell or the face's own first one, so the item's flags decide it. A face listed in a skipped
+  // cell was reported by that earlier query; a face that is not lies only in cells outside it,
+  // its reporting cell among them.
   template <class Fn>
-  void for_each_near(const Vec3& lo, const Vec3& hi, Fn&& fn) const {
+  void for_each_near(const Vec3& lo, const Vec3& hi, const std::array<long, 6>* skip, Fn&& fn) const {
     const auto a = cell_of(lo), b = cell_of(hi);
     for (long z = a[2]; z <= b[2]; ++z)
       for (long y = a[1]; y <= b[1]; ++y)
         for (long x = a[0]; x <= b[0]; ++x) {
+          if (skip && x >= (*skip)[0] && x <= (*skip)[3] && y >= (*skip)[1] && y <= (*skip)[4] && z >= (*skip)[2] &&
+              z <= (*skip)[5])
+            continue;
+          // Flags the item must have: none along an axis where this is the query's first cell.
+          const std::uint32_t need = (x != a[0] ? 1u : 0u) | (y != a[1] ? 2u : 0u) | (z != a[2] ? 4u : 0u);
           const std::size_t c = static_cast<std::size_t>((z * dims_[1] + y) * dims_[0] + x);
           for (std::size_t i = start_[c]; i < start_[c + 1]; ++i) {
             const Item& item = items_[i];
-            if (std::max<long>(item.lo_cell[0], a[0]) != x || std::max<long>(item.lo_cell[1], a[1]) != y ||
-                std::max<long>(item.lo_cell[2], a[2]) != z)
-              continue;
+            if ((item.key & need) != need) continue;
             fn(item);
           }
         }
+  }
+
+  // The cell range of [lo, hi] as {lo x, y, z, hi x, y, z}, for for_each_near's skip.
+  std::array<long, 6> range_of(const Vec3& lo, const Vec3& hi) const {
+    const auto a = cell_of(lo), b = cell_of(hi);
+    return {a[0], a[1], a[2], b[0], b[1], b[2]};
   }
 
  private:
@@ -102,7 +127,7 @@ class Grid {
   double inv_h_ = 1.0;
   std::array<long, 3> dims_{1, 1, 1};
   std::vector<std::size_t> start_;
-  std::vector<Item> items_;
+  std::unique_ptr<Item[]> items_;
 };
 
 }  // namespace
@@ -147,7 +172,7 @@ int limit_moves_by_clearance(std::vector<Vec3>& positions, const std::vector<Vec
       const float nx = static_cast<float>(nv_.x()), ny = static_cast<float>(nv_.y()), nz = static_cast<float>(nv_.z());
       auto visit = [&](const Grid::Item& item) {
         if (!(item.nx * nx + item.ny * ny + item.nz * nz < 0.0f)) return;
-        const Face& fc = faces[idx(item.face)];
+        const Face& fc = faces[idx(item.face())];
         if (fc[0] == v || fc[1] == v || fc[2] == v) return;
         const Vec3 &a = rest[idx(fc[0])], &b = rest[idx(fc[1])], &c = rest[idx(fc[2])];
         // Box test first: most candidates are farther than the best distance so far.
@@ -162,10 +187,13 @@ int limit_moves_by_clearance(std::vector<Vec3>& positions, const std::vector<Vec
       // the minimum over the same faces either way, so the result is bit for bit that of one
       // search of the whole cube (eight_20: a quarter less time in the limit, output identical).
       const double rounding = 4.0 * std::numeric_limits<double>::epsilon() * (r.cwiseAbs().maxCoeff() + limit);
-      for (const double share : {0.5, 1.0}) {
-        const double half = share * limit;
-        grid.for_each_near(r - Vec3::Constant(half), r + Vec3::Constant(half), visit);
-        if (best <= half - rounding) break;
+      // The second search skips the first one's cells: their faces were all seen (a face seen
+      // again cannot lower best), and the order of the others is unchanged.
+      const Vec3 inner_lo = r - Vec3::Constant(0.5 * limit), inner_hi = r + Vec3::Constant(0.5 * limit);
+      grid.for_each_near(inner_lo, inner_hi, nullptr, visit);
+      if (!(best <= 0.5 * limit - rounding)) {
+        const std::array<long, 6> inner = grid.range_of(inner_lo, inner_hi);
+        grid.for_each_near(r - Vec3::Constant(limit), r + Vec3::Constant(limit), &inner, visit);
       }
       // Shortened to kShare c along its direction.
       const double allowed = kClearanceShare * best;
