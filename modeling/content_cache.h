@@ -22,6 +22,10 @@ struct ContentHash {
     for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ULL;
   }
   void size(std::size_t n) { bytes(&n, sizeof n); }
+  // FNV-1a over one 64-bit word at a time: eight times fewer steps than bytes() for keys made of
+  // doubles, hashed often (mesh improvement's face keys). Only the high bits mix in every input
+  // bit, so table indices take those (multiply-shift).
+  void word(std::uint64_t w) { h = (h ^ w) * 1099511628211ULL; }
   void points(const std::vector<Vec2>& v) {
     size(v.size());
     if (!v.empty()) bytes(v.data(), v.size() * sizeof(Vec2));
