@@ -66,11 +66,12 @@ class Relaxer {
     }
     m_.flip(h);
     ++flips_;
-    if (flipped_) {
-      flipped_->resize(idx(m_.num_faces()), 0);
-      (*flipped_)[idx(HalfedgeMesh::face_of(h))] = 1;
-      (*flipped_)[idx(HalfedgeMesh::face_of(m_.twin(h)))] = 1;
-    }
+    for (std::vector<std::uint8_t>* marks : {flipped_, dirty_})
+      if (marks) {
+        marks->resize(idx(m_.num_faces()), 0);
+        (*marks)[idx(HalfedgeMesh::face_of(h))] = 1;
+        (*marks)[idx(HalfedgeMesh::face_of(m_.twin(h)))] = 1;
+      }
     if (stack) {
       const int t = m_.twin(h);
       stack->push_back(HalfedgeMesh::next(h));
@@ -105,6 +106,8 @@ class Relaxer {
 
   int flips() const { return flips_; }
   void track_flips(std::vector<std::uint8_t>* flipped) { flipped_ = flipped; }
+  // A second set of marks, for refine_mesh's faces to look at again (cleared by the caller).
+  void track_dirty(std::vector<std::uint8_t>* dirty) { dirty_ = dirty; }
   // Keeps per-vertex valences up to date across flips (the split loop's valence limit reads
   // them; walking the fans there was 4% of a stress case's reconstruction, perf).
   void track_valences(std::vector<int>* valence) { valence_ = valence; }
@@ -115,6 +118,7 @@ class Relaxer {
   double cos_max_;
   int flips_ = 0;
   std::vector<std::uint8_t>* flipped_ = nullptr;
+  std::vector<std::uint8_t>* dirty_ = nullptr;
   std::vector<int>* valence_ = nullptr;
 };
 
@@ -233,12 +237,24 @@ RefineStats refine_mesh(HalfedgeMesh& m, std::vector<std::uint8_t>& fixed, const
   // first; later passes only need the edges around the new faces.
   relaxer.relax_all();
   std::vector<int> touched;
+  // Faces to look at in the next pass: every face in the first; then only those a split or a
+  // flip rewrote since they were last looked at, and those the valence limit refused (a flip
+  // elsewhere can lower a corner's valence). A face's own test reads only its corners, their
+  // length attributes and its plane, which nothing else changes, so a face left out would be
+  // refused again: the splits are the same, in the same order (each pass still goes in face
+  // order, and a face rewritten before its turn in a pass is looked at in that pass). On the
+  // 200k-face refinements of stress inputs the later passes re-tested every face to split a few.
+  std::vector<std::uint8_t> dirty(idx(m.num_faces()), 1);
+  relaxer.track_dirty(&dirty);
   for (int pass = 0; pass < o.max_passes; ++pass) {
     touched.clear();
     ++stats.passes;
     int splits = 0;
     const int nf0 = m.num_faces();
+    dirty.resize(idx(m.num_faces()), 0);
     for (int f = 0; f < nf0 && m.num_faces() + 2 <= o.max_faces; ++f) {
+      if (!dirty[idx(f)] && !o.rescan_every_face) continue;
+      dirty[idx(f)] = 0;
       const Face fc = m.faces[idx(f)];
       const Vec3 c = (m.position(fc[0]) + m.position(fc[1]) + m.position(fc[2])) / 3.0;
       const double sc = (sigma[idx(fc[0])] + sigma[idx(fc[1])] + sigma[idx(fc[2])]) / 3.0;
@@ -266,9 +282,12 @@ RefineStats refine_mesh(HalfedgeMesh& m, std::vector<std::uint8_t>& fixed, const
       if (o.max_valence > 0 && (valence[idx(fc[0])] >= valence_cap(fc[0]) || valence[idx(fc[1])] >= valence_cap(fc[1]) ||
                                 valence[idx(fc[2])] >= valence_cap(fc[2]))) {
         ++stats.valence_refusals;
+        dirty[idx(f)] = 1;
         continue;
       }
       m.split_face(f, c);
+      dirty.resize(idx(m.num_faces()), 0);
+      dirty[idx(f)] = dirty[idx(m.num_faces() - 2)] = dirty[idx(m.num_faces() - 1)] = 1;
       if (o.max_valence > 0) {
         for (int v : fc) ++valence[idx(v)];
         valence.push_back(3);

@@ -39,6 +39,9 @@ struct RefineOptions {
   // only made needles. 0: no limit. Measured: docs/mesh-improvement.md.
   int max_valence = 32;
   const std::vector<int>* base_valence = nullptr;
+  // Look at every face in every pass instead of only the faces rewritten since the last look
+  // (and those the valence limit refused). The splits are the same either way; tests compare.
+  bool rescan_every_face = false;
 };
 
 struct RefineStats {

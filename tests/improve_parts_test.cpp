@@ -317,6 +317,41 @@ TEST(Refinement, ValenceLimitStopsNeedleFansWhereFlipsCannotFollow) {
   EXPECT_FALSE(does_self_intersect(limited.to_trimesh()));
 }
 
+// Each pass after the first looks only at the faces rewritten since their last look (and those
+// the valence limit refused); looking at every face must give the same mesh, split for split.
+// The staircase with flips free and a tight valence limit (refusals that later flips undo), with
+// the default limit, and with flips locked.
+TEST(Refinement, LookingOnlyAtRewrittenFacesSplitsTheSame) {
+  const auto in = ps::testing::staircase(3, 192);
+  auto built = HalfedgeMesh::build(in.mesh);
+  ASSERT_TRUE(built.is_ok());
+  for (const auto& e : in.fixed_edges) ASSERT_TRUE(built->constrain_edge(e[0], e[1]));
+  const std::vector<std::uint8_t> fixed0(in.fixed_vertex.begin(), in.fixed_vertex.end());
+  FlipLock free_flips, no_flips;
+  no_flips.all = true;
+  int refused = 0;
+  for (const auto& [limit, lock] : {std::pair{7, &free_flips}, std::pair{32, &free_flips}, std::pair{32, &no_flips}}) {
+    RefineOptions o;
+    o.max_valence = limit;
+    o.alpha = 1.2;  // finer than the default: more passes
+    RefineOptions every = o;
+    every.rescan_every_face = true;
+    HalfedgeMesh a = *built, b = *built;
+    std::vector<std::uint8_t> fa = fixed0, fb = fixed0, ca, cb;
+    const RefineStats sa = refine_mesh(a, fa, *lock, o, &ca);
+    const RefineStats sb = refine_mesh(b, fb, *lock, every, &cb);
+    EXPECT_GT(sa.passes, 2) << limit;
+    EXPECT_EQ(sa.splits, sb.splits) << limit;
+    EXPECT_EQ(sa.flips, sb.flips) << limit;
+    EXPECT_EQ(sa.passes, sb.passes) << limit;
+    EXPECT_EQ(a.faces, b.faces) << limit;
+    EXPECT_EQ(a.positions, b.positions) << limit;
+    EXPECT_EQ(ca, cb) << limit;
+    refused += sa.valence_refusals;
+  }
+  EXPECT_GT(refused, 0);
+}
+
 // === Smoothing (Eq. 4.3)
 
 TEST(Smoothing, ARegularIcosahedronIsAFixedPointOfCurvatureEvening) {
