@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <random>
 
 #include "modeling/face_intersections.h"
@@ -249,16 +250,38 @@ TEST(Refinement, SplitsNeverMoveVerticesAndKeepCurveEdges) {
   EXPECT_LE(capped.num_faces(), small.max_faces);
 }
 
+// The densely sampled staircase (3 steps, 192 points per ring) with its curve edges constrained
+// and its curve vertices flagged, as three refinement tests below start from it; nullopt (with
+// a failure recorded) when it cannot be built.
+struct ConstrainedStaircase {
+  HalfedgeMesh mesh;
+  std::vector<std::uint8_t> fixed;
+  std::vector<std::array<int, 2>> fixed_edges;
+};
+std::optional<ConstrainedStaircase> dense_staircase() {
+  const auto in = ps::testing::staircase(3, 192);
+  auto built = HalfedgeMesh::build(in.mesh);
+  if (!built.is_ok()) {
+    ADD_FAILURE() << built.message();
+    return std::nullopt;
+  }
+  for (const auto& e : in.fixed_edges)
+    if (!built->constrain_edge(e[0], e[1])) {
+      ADD_FAILURE() << "curve edge " << e[0] << "-" << e[1] << " is not an edge";
+      return std::nullopt;
+    }
+  return ConstrainedStaircase{std::move(built).value(), {in.fixed_vertex.begin(), in.fixed_vertex.end()}, in.fixed_edges};
+}
+
 // Densely sampled curves (192 points per ring, slab height 1): without a floor the whole
 // surface becomes as dense as the curves; with RefineOptions::min_length no face is split once
 // its vertices are within min_length / alpha of its centroid, so the count drops by about
 // (min_length / curve spacing)^2, and the curves stay intact.
 TEST(Refinement, LengthFloorBoundsTheDensityOfDenselySampledCurves) {
-  const auto in = ps::testing::staircase(3, 192);
-  auto built = HalfedgeMesh::build(in.mesh);
-  ASSERT_TRUE(built.is_ok());
-  for (const auto& e : in.fixed_edges) ASSERT_TRUE(built->constrain_edge(e[0], e[1]));
-  const std::vector<std::uint8_t> fixed0(in.fixed_vertex.begin(), in.fixed_vertex.end());
+  const auto staircase = dense_staircase();
+  ASSERT_TRUE(staircase);
+  const HalfedgeMesh* built = &staircase->mesh;
+  const std::vector<std::uint8_t>& fixed0 = staircase->fixed;
   HalfedgeMesh dense = *built, floored = *built;
   std::vector<std::uint8_t> f1 = fixed0, f2 = fixed0;
   refine_mesh(dense, f1);
@@ -267,8 +290,8 @@ TEST(Refinement, LengthFloorBoundsTheDensityOfDenselySampledCurves) {
   o.min_length = 4.0 * spacing;
   refine_mesh(floored, f2, {}, o);
   EXPECT_LT(floored.num_faces() * 4, dense.num_faces()) << floored.num_faces() << " vs " << dense.num_faces();
-  EXPECT_GT(floored.num_faces(), static_cast<int>(in.mesh.faces.size()));  // still refines the long bands
-  for (const auto& e : in.fixed_edges) {
+  EXPECT_GT(floored.num_faces(), built->num_faces());  // still refines the long bands
+  for (const auto& e : staircase->fixed_edges) {
     const int h = floored.find_halfedge(e[0], e[1]);
     ASSERT_GE(h, 0);
     EXPECT_TRUE(floored.is_constrained(h));
@@ -281,11 +304,10 @@ TEST(Refinement, LengthFloorBoundsTheDensityOfDenselySampledCurves) {
 // at max(max_valence, twice its starting valence); without it the same refinement goes far
 // beyond.
 TEST(Refinement, ValenceLimitStopsNeedleFansWhereFlipsCannotFollow) {
-  const auto in = ps::testing::staircase(3, 192);
-  auto built = HalfedgeMesh::build(in.mesh);
-  ASSERT_TRUE(built.is_ok());
-  for (const auto& e : in.fixed_edges) ASSERT_TRUE(built->constrain_edge(e[0], e[1]));
-  const std::vector<std::uint8_t> fixed0(in.fixed_vertex.begin(), in.fixed_vertex.end());
+  const auto staircase = dense_staircase();
+  ASSERT_TRUE(staircase);
+  const HalfedgeMesh* built = &staircase->mesh;
+  const std::vector<std::uint8_t>& fixed0 = staircase->fixed;
   std::vector<int> base(idx(built->num_vertices()));
   for (int v = 0; v < built->num_vertices(); ++v) base[idx(v)] = built->valence(v);
   FlipLock no_flips;
@@ -322,11 +344,10 @@ TEST(Refinement, ValenceLimitStopsNeedleFansWhereFlipsCannotFollow) {
 // The staircase with flips free and a tight valence limit (refusals that later flips undo), with
 // the default limit, and with flips locked.
 TEST(Refinement, LookingOnlyAtRewrittenFacesSplitsTheSame) {
-  const auto in = ps::testing::staircase(3, 192);
-  auto built = HalfedgeMesh::build(in.mesh);
-  ASSERT_TRUE(built.is_ok());
-  for (const auto& e : in.fixed_edges) ASSERT_TRUE(built->constrain_edge(e[0], e[1]));
-  const std::vector<std::uint8_t> fixed0(in.fixed_vertex.begin(), in.fixed_vertex.end());
+  const auto staircase = dense_staircase();
+  ASSERT_TRUE(staircase);
+  const HalfedgeMesh* built = &staircase->mesh;
+  const std::vector<std::uint8_t>& fixed0 = staircase->fixed;
   FlipLock free_flips, no_flips;
   no_flips.all = true;
   int refused = 0;
