@@ -257,8 +257,8 @@ Result<TriMesh> improve_unit_scale(const TriMesh& mesh, const std::vector<bool>&
         // a new face was tested against every face of that mesh, an untouched one is a face of
         // the round's start, clean too. A pair of faces that both occur in attempt 0 (as the same
         // three points) and crossed nothing there cannot cross now, as whether two triangles
-        // cross depends on their points alone. So only the faces that attempt 0 did not have, or
-        // that crossed there, are tested (FaceKeySet holds the clean faces attempt 0 made). (Stress seed 737: the retry's check was 60% of the
+        // cross depends on their points alone. So only the faces that attempt 0 did not make
+        // clean (clean_before) are tested. (Stress seed 737: the retry's check was 60% of the
         // refinement checks, about 2 s, on faces mostly the same as the first attempt's.)
         std::vector<int> new_faces;
         for (std::size_t f = 0; f < changed.size(); ++f)

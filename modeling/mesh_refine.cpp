@@ -251,7 +251,6 @@ RefineStats refine_mesh(HalfedgeMesh& m, std::vector<std::uint8_t>& fixed, const
     ++stats.passes;
     int splits = 0;
     const int nf0 = m.num_faces();
-    dirty.resize(idx(m.num_faces()), 0);
     for (int f = 0; f < nf0 && m.num_faces() + 2 <= o.max_faces; ++f) {
       if (!dirty[idx(f)] && !o.rescan_every_face) continue;
       dirty[idx(f)] = 0;

@@ -89,24 +89,30 @@ class Grid {
     return c;
   }
 
-  // fn(item) once for every face listed in a cell overlapping [lo, hi] and not in a cell of
-  // `skip` (the cell range of an earlier query inside this one, or none): a face listed in
-  // several of those cells is reported by one of them, the one holding the lowest corner of the
-  // intersection of its cell range with the query's. Along an axis that cell is the query's first
-  // cell or the face's own first one, so the item's flags decide it. A face listed in a skipped
-  // cell was reported by that earlier query; a face that is not lies only in cells outside it,
-  // its reporting cell among them.
-  template <class Fn>
-  void for_each_near(const Vec3& lo, const Vec3& hi, const std::array<long, 6>* skip, Fn&& fn) const {
+  // A cell range, {lo x, y, z, hi x, y, z}: the cells of the box [lo, hi].
+  using CellRange = std::array<long, 6>;
+  CellRange range_of(const Vec3& lo, const Vec3& hi) const {
     const auto a = cell_of(lo), b = cell_of(hi);
-    for (long z = a[2]; z <= b[2]; ++z)
-      for (long y = a[1]; y <= b[1]; ++y)
-        for (long x = a[0]; x <= b[0]; ++x) {
+    return {a[0], a[1], a[2], b[0], b[1], b[2]};
+  }
+
+  // fn(item) once for every face listed in a cell of `range` and not in a cell of `skip` (the
+  // range of an earlier query inside this one, or none): a face listed in several of those cells
+  // is reported by one of them, the one holding the lowest corner of the intersection of its
+  // cell range with the query's. Along an axis that cell is the query's first cell or the face's
+  // own first one, so the item's flags decide it. A face listed in a skipped cell was reported
+  // by that earlier query; a face that is not lies only in cells outside it, its reporting cell
+  // among them.
+  template <class Fn>
+  void for_each_near(const CellRange& range, const CellRange* skip, Fn&& fn) const {
+    for (long z = range[2]; z <= range[5]; ++z)
+      for (long y = range[1]; y <= range[4]; ++y)
+        for (long x = range[0]; x <= range[3]; ++x) {
           if (skip && x >= (*skip)[0] && x <= (*skip)[3] && y >= (*skip)[1] && y <= (*skip)[4] && z >= (*skip)[2] &&
               z <= (*skip)[5])
             continue;
           // Flags the item must have: none along an axis where this is the query's first cell.
-          const std::uint32_t need = (x != a[0] ? 1u : 0u) | (y != a[1] ? 2u : 0u) | (z != a[2] ? 4u : 0u);
+          const std::uint32_t need = (x != range[0] ? 1u : 0u) | (y != range[1] ? 2u : 0u) | (z != range[2] ? 4u : 0u);
           const std::size_t c = static_cast<std::size_t>((z * dims_[1] + y) * dims_[0] + x);
           for (std::size_t i = start_[c]; i < start_[c + 1]; ++i) {
             const Item& item = items_[i];
@@ -114,12 +120,6 @@ class Grid {
             fn(item);
           }
         }
-  }
-
-  // The cell range of [lo, hi] as {lo x, y, z, hi x, y, z}, for for_each_near's skip.
-  std::array<long, 6> range_of(const Vec3& lo, const Vec3& hi) const {
-    const auto a = cell_of(lo), b = cell_of(hi);
-    return {a[0], a[1], a[2], b[0], b[1], b[2]};
   }
 
  private:
@@ -189,12 +189,10 @@ int limit_moves_by_clearance(std::vector<Vec3>& positions, const std::vector<Vec
       const double rounding = 4.0 * std::numeric_limits<double>::epsilon() * (r.cwiseAbs().maxCoeff() + limit);
       // The second search skips the first one's cells: their faces were all seen (a face seen
       // again cannot lower best), and the order of the others is unchanged.
-      const Vec3 inner_lo = r - Vec3::Constant(0.5 * limit), inner_hi = r + Vec3::Constant(0.5 * limit);
-      grid.for_each_near(inner_lo, inner_hi, nullptr, visit);
-      if (!(best <= 0.5 * limit - rounding)) {
-        const std::array<long, 6> inner = grid.range_of(inner_lo, inner_hi);
-        grid.for_each_near(r - Vec3::Constant(limit), r + Vec3::Constant(limit), &inner, visit);
-      }
+      const Grid::CellRange inner = grid.range_of(r - Vec3::Constant(0.5 * limit), r + Vec3::Constant(0.5 * limit));
+      grid.for_each_near(inner, nullptr, visit);
+      if (!(best <= 0.5 * limit - rounding))
+        grid.for_each_near(grid.range_of(r - Vec3::Constant(limit), r + Vec3::Constant(limit)), &inner, visit);
       // Shortened to kShare c along its direction.
       const double allowed = kClearanceShare * best;
       if (best < limit && d > allowed) {  // (best == limit: nothing near; kShare * (d / kShare) may round below d)
