@@ -30,6 +30,10 @@ nlohmann::json report_json(const DeformSpec& spec, const DeformStats& st) {
   r["lambda"] = spec.lambda;
   r["iterations"] = st.iterations;
   r["converged"] = st.converged;
+  // Anderson acceleration of the iterations (docs/deformation.md): iterations that took the
+  // accelerated iterate, and restarts of its history.
+  r["accelerated_iterations"] = st.accelerated_iterations;
+  r["acceleration_restarts"] = st.rejected_accelerations;
   r["initial_energy"] = st.energies.empty() ? 0.0 : st.energies.front();
   r["final_energy"] = st.energies.empty() ? 0.0 : st.energies.back();
   r["energies"] = st.energies;

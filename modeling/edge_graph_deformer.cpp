@@ -9,10 +9,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "modeling/anderson_acceleration.h"
 #include "modeling/edge_graph.h"
 #include "modeling/parallel_over.h"
 #include "modeling/rotation_fit.h"
@@ -825,20 +827,78 @@ Status EdgeGraphDeformer::deform(const std::vector<Vec3>& targets) {
   // The energy checked is the one at the start of each iteration with its new transforms,
   // E(x_{k-1}, R_k), which the local step computes for free; for lambda = 1 the sequence is
   // non-increasing. The last entry is the exact energy of the result.
+  //
+  // Anderson acceleration (anderson_acceleration.h) on the free vertices: after each global
+  // step x_k = G(x_{k-1}) the next iterate is the accelerated one. Its safeguard depends on
+  // what the alternation is:
+  //   - lambda = 1 everywhere: a descent on E (the local step minimises E over the rotations,
+  //     the global step over x). The next local step computes the accelerated iterate's energy,
+  //     and one that does not lower it below the previous iterate's is replaced by the plain
+  //     G(x_{k-1}) (one more local step; the history restarts), so E still never increases.
+  //   - some lambda < 1: the scale s_i and R_i are fitted to the 1-form alone, so the
+  //     alternation is a fixed-point iteration whose energy may rise on the way to its fixed
+  //     point, and an energy test would refuse good steps. Its residual |G(x) - x| is the
+  //     measure instead: when it grows past twice its smallest value since the last restart,
+  //     the history restarts (the next iterate is the plain one).
+  // The last iteration's global step is always taken as it is.
   s.stats.local_ms = s.stats.solve_ms = s.stats.energy_ms = 0;
+  s.stats.accelerated_iterations = s.stats.rejected_accelerations = 0;
+  const bool accelerate = s.params.anderson_window > 0 && s.n_free > 0;
+  bool descent = s.params.lambda == 1.0;
+  for (double l : s.params.vertex_lambda) descent = descent && (std::isnan(l) || l == 1.0);
+  std::optional<AndersonAcceleration> aa;
+  if (accelerate) aa.emplace(s.params.anderson_window);
+  const Eigen::Index n_flat = 3 * static_cast<Eigen::Index>(s.n_free);
+  Eigen::VectorXd u_prev, g_plain, x_next;
+  double residual_min = std::numeric_limits<double>::infinity();
+  bool pending = false;  // x is an accelerated iterate whose energy is not yet checked
   for (int it = 0; it < s.params.max_iterations; ++it) {
     const auto ti = Clock::now();
-    const double e = s.local_step();
+    double e = s.local_step();
+    if (pending) {
+      pending = false;
+      if (e < e_prev) {
+        ++s.stats.accelerated_iterations;
+      } else {
+        ++s.stats.rejected_accelerations;
+        aa->reset();
+        Eigen::Map<Eigen::VectorXd>(s.x.data(), n_flat) = g_plain;
+        e = s.local_step();
+      }
+    }
     const auto tl = Clock::now();
+    if (accelerate) u_prev = Eigen::Map<const Eigen::VectorXd>(s.x.data(), n_flat);
     s.global_step();
+    const double rel = std::abs(e_prev - e) / std::max(e_prev, 1e-300);
+    e_prev = e;
+    const bool done = rel < s.params.tolerance;
+    if (accelerate && !done && it + 1 < s.params.max_iterations) {
+      auto x_flat = Eigen::Map<Eigen::VectorXd>(s.x.data(), n_flat);
+      if (!descent) {
+        // Anderson iterates' residuals are not monotone; a restart on every rise restarted 27
+        // of 63 iterations at lambda = 0 (elephant), so only a doubling of the smallest
+        // residual since the last restart counts (DeformSolver.AndersonAcceleration...).
+        const double residual = (x_flat - u_prev).norm();
+        if (!(residual < 2.0 * residual_min) && aa->history() > 0) {
+          ++s.stats.rejected_accelerations;
+          aa->reset();
+          residual_min = residual;
+        }
+        residual_min = std::min(residual_min, residual);
+      }
+      if (aa->next(u_prev, x_flat, x_next)) {
+        g_plain = x_flat;
+        x_flat = x_next;
+        if (descent) pending = true;
+        else ++s.stats.accelerated_iterations;
+      }
+    }
     s.stats.local_ms += std::chrono::duration<double, std::milli>(tl - ti).count();
     s.stats.solve_ms += ms_since(tl);
     s.stats.iteration_ms.push_back(ms_since(ti));
     s.stats.energies.push_back(e);
     ++s.stats.iterations;
-    const double rel = std::abs(e_prev - e) / std::max(e_prev, 1e-300);
-    e_prev = e;
-    if (rel < s.params.tolerance) {
+    if (done) {
       s.stats.converged = true;
       break;
     }

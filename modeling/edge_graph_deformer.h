@@ -31,7 +31,9 @@
 // parallel with TBB) and back-substitutes the three coordinates in one pass over the factor.
 // The first solve uses identity transforms (naive Laplacian editing). Each node keeps its R_i
 // between local steps, and the next fit starts from it (Newton on SO(3), rotation_fit.h); deform()
-// starts from identity, drag() from the previous frame's rotations.
+// starts from identity, drag() from the previous frame's rotations. deform() accelerates the
+// iterations (Anderson acceleration on the free vertices, safeguarded by the energy where the
+// alternation is a descent and by the fixed-point residual elsewhere; docs/deformation.md).
 #include <memory>
 #include <vector>
 
@@ -48,6 +50,9 @@ struct DeformParameters {
   std::vector<double> vertex_lambda; // empty, or #V stiffness values; NaN entries use `lambda`
   int max_iterations = 10;           // local/global iterations after the initial solve
   double tolerance = 1e-5;           // stop when |E_prev - E| / E_prev < tolerance (see stats)
+  // deform(): Anderson acceleration of the local/global iterations with this many differences
+  // kept (anderson_acceleration.h); 0 runs the plain alternation. drag() is never accelerated.
+  int anderson_window = 5;
 };
 
 struct DeformStats {
@@ -67,6 +72,9 @@ struct DeformStats {
   std::vector<double> energies;
   int iterations = 0;
   bool converged = false;
+  // deform() with Anderson acceleration: iterations whose accelerated iterate lowered the
+  // energy, and those where it did not and the plain iterate was taken (one more local step).
+  int accelerated_iterations = 0, rejected_accelerations = 0;
   double max_handle_residual = 0;  // largest |x_h - target_h| (0 by construction)
   double total_ms = 0;             // of the last deform()/drag() call
 };

@@ -440,3 +440,62 @@ TEST(DeformSolver, SameBitsWithOneAndTwoThreads) {
   EXPECT_TRUE(saw_small);
   EXPECT_TRUE(saw_large);
 }
+
+// === Anderson acceleration (anderson_acceleration.h): at the same tolerance the accelerated
+// iteration stops in fewer iterations and at least as close to the solution, the fixed point
+// of the plain local/global alternation (run here to a relative energy change of 1e-13).
+TEST(DeformSolver, AndersonAccelerationConvergesInFewerIterationsAndAsClose) {
+  LOAD_OR_SKIP(m, "elephant.off");
+  const double d = diagonal(m);
+  const auto s = make_scenario(m, 100, 0.25 * d, 0.05 * d, lift(Vec3(0.06 * d, 0.04 * d, 0.0), 0.3, Vec3::UnitY(), m.vertices[100]));
+  double moved = 0;
+  for (std::size_t k = 0; k < s.handles.size(); ++k)
+    moved = std::max(moved, (s.targets[k] - m.vertices[static_cast<std::size_t>(s.handles[k])]).norm());
+  double fast_total = 0, plain_total = 0;
+  for (auto domain : {DeformDomain::kEdgeGraph, DeformDomain::kPrimal})
+    for (double lambda : {0.0, 0.5, 1.0}) {
+      auto solve = [&](int window, int iterations, double tolerance, DeformStats& st) {
+        EdgeGraphDeformer def;
+        EXPECT_TRUE(def.set_mesh(m));
+        DeformParameters p;
+        p.domain = domain;
+        p.lambda = lambda;
+        p.anderson_window = window;
+        p.max_iterations = iterations;
+        p.tolerance = tolerance;
+        EXPECT_TRUE(def.set_region(s.roi, s.handles, p));
+        EXPECT_TRUE(def.deform(s.targets));
+        st = def.stats();
+        return def.vertices();
+      };
+      DeformStats exact_st, plain_st, fast_st;
+      const auto exact = solve(0, 3000, 1e-13, exact_st);
+      ASSERT_TRUE(exact_st.converged);
+      const auto plain = solve(0, 500, 1e-5, plain_st);
+      const auto fast = solve(5, 500, 1e-5, fast_st);
+      ASSERT_TRUE(plain_st.converged);
+      ASSERT_TRUE(fast_st.converged);
+      auto error = [&](const std::vector<Vec3>& x) {
+        double e = 0;
+        for (std::size_t v = 0; v < x.size(); ++v) e = std::max(e, (x[v] - exact[v]).norm());
+        return e / moved;
+      };
+      const double plain_err = error(plain), fast_err = error(fast);
+      std::printf("  %s lambda %.1f: plain %d iterations, error %.2e; accelerated %d (%d accelerated, %d restarts), error %.2e; exact %d\n",
+                  domain == DeformDomain::kEdgeGraph ? "edge graph" : "primal", lambda, plain_st.iterations, plain_err,
+                  fast_st.iterations, fast_st.accelerated_iterations, fast_st.rejected_accelerations, fast_err,
+                  exact_st.iterations);
+      EXPECT_LT(fast_st.iterations, plain_st.iterations) << lambda;
+      EXPECT_GT(fast_st.accelerated_iterations, 0) << lambda;
+      // Below lambda = 1 the energy is not a descent, and where the relative change first dips
+      // under the tolerance is partly chance: measured, the accelerated result was 2-10x closer
+      // at lambda 0.5 and 1 and within 2% of the plain one's error at lambda 0 (primal).
+      EXPECT_LE(fast_err, 1.25 * plain_err) << lambda;
+      if (lambda > 0.0) {
+        EXPECT_LT(fast_err, plain_err) << lambda;
+      }
+      fast_total += fast_err;
+      plain_total += plain_err;
+    }
+  EXPECT_LT(fast_total, 0.5 * plain_total);
+}
