@@ -33,6 +33,7 @@ using SpRow = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 using SpCol = Eigen::SparseMatrix<double, Eigen::ColMajor>;
 
 constexpr std::size_t kGrain = 512;
+constexpr int kMaxAndersonWindow = 64;
 
 // === Parallel loops
 // TBB's parallel_for / parallel_reduce, except in ThreadSanitizer builds: Debian's libtbb is not
@@ -459,6 +460,11 @@ Status EdgeGraphDeformer::set_region(const std::vector<int>& roi, const std::vec
   if (p.max_iterations < 0) return Status::error("max_iterations: must be >= 0");
   if (!(p.tolerance >= 0.0) || !std::isfinite(p.tolerance))
     return Status::error("tolerance: must be a finite number >= 0");
+  // The history is 2 x window vectors of 3 x #free doubles; past a few dozen it costs memory
+  // and time and gains nothing (Peng et al. use 5-6).
+  if (p.anderson_window < 0 || p.anderson_window > kMaxAndersonWindow)
+    return Status::error("anderson_window: " + std::to_string(p.anderson_window) + " is outside [0, " +
+                         std::to_string(kMaxAndersonWindow) + "]");
   enum : char { kStatic = 0, kFree = 1, kHandle = 2 };
   std::vector<char> kind(static_cast<std::size_t>(nv), kStatic);
   for (std::size_t k = 0; k < handles.size(); ++k) {

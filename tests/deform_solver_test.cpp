@@ -402,8 +402,14 @@ TEST(DeformSolver, RefusesBadRegions) {
   p.lambda = 1.5;
   st = def.set_region({0}, {5}, p);
   EXPECT_NE(st.message().find("lambda"), std::string::npos) << st.message();
-  // Wrong number of handle positions.
   p.lambda = 0.5;
+  for (int window : {-1, 65, 1 << 30}) {
+    p.anderson_window = window;
+    st = def.set_region({0}, {5}, p);
+    EXPECT_NE(st.message().find("anderson_window"), std::string::npos) << st.message();
+  }
+  p.anderson_window = 5;
+  // Wrong number of handle positions.
   ASSERT_TRUE(def.set_region({0, 1, 2}, {5}, p));
   EXPECT_FALSE(def.deform({}));
   TriMesh bad = m;
