@@ -893,10 +893,13 @@ Status EdgeGraphDeformer::deform(const std::vector<Vec3>& targets) {
         residual_min = std::min(residual_min, residual);
       }
       if (aa->next(u_prev, x_flat, x_next)) {
-        g_plain = x_flat;
+        if (descent) {
+          g_plain = x_flat;  // the fallback if the energy check refuses x_next
+          pending = true;
+        } else {
+          ++s.stats.accelerated_iterations;
+        }
         x_flat = x_next;
-        if (descent) pending = true;
-        else ++s.stats.accelerated_iterations;
       }
     }
     s.stats.local_ms += std::chrono::duration<double, std::milli>(tl - ti).count();

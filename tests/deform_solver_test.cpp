@@ -101,14 +101,16 @@ double dihedral_change(const TriMesh& a, const TriMesh& b, const std::vector<int
 }
 
 Result<TriMesh> run(const TriMesh& m, const Scenario& s, double lambda, DeformDomain domain,
-                    DeformStats* stats = nullptr, int iterations = 10) {
+                    DeformStats* stats = nullptr, int iterations = 10, double tolerance = 1e-6,
+                    int anderson_window = DeformParameters{}.anderson_window) {
   std::vector<HandleTarget> h;
   for (std::size_t k = 0; k < s.handles.size(); ++k) h.push_back({s.handles[k], s.targets[k]});
   DeformParameters p;
   p.lambda = lambda;
   p.domain = domain;
   p.max_iterations = iterations;
-  p.tolerance = 1e-6;
+  p.tolerance = tolerance;
+  p.anderson_window = anderson_window;
   return deform_mesh(m, s.roi, h, p, stats);
 }
 
@@ -461,18 +463,9 @@ TEST(DeformSolver, AndersonAccelerationConvergesInFewerIterationsAndAsClose) {
   for (auto domain : {DeformDomain::kEdgeGraph, DeformDomain::kPrimal})
     for (double lambda : {0.0, 0.5, 1.0}) {
       auto solve = [&](int window, int iterations, double tolerance, DeformStats& st) {
-        EdgeGraphDeformer def;
-        EXPECT_TRUE(def.set_mesh(m));
-        DeformParameters p;
-        p.domain = domain;
-        p.lambda = lambda;
-        p.anderson_window = window;
-        p.max_iterations = iterations;
-        p.tolerance = tolerance;
-        EXPECT_TRUE(def.set_region(s.roi, s.handles, p));
-        EXPECT_TRUE(def.deform(s.targets));
-        st = def.stats();
-        return def.vertices();
+        auto r = run(m, s, lambda, domain, &st, iterations, tolerance, window);
+        EXPECT_TRUE(r) << r.message();
+        return r ? r->vertices : std::vector<Vec3>(m.vertices.size(), Vec3::Zero());
       };
       DeformStats exact_st, plain_st, fast_st;
       const auto exact = solve(0, 3000, 1e-13, exact_st);
