@@ -27,6 +27,7 @@ struct Options {
   bool no_improve = false;
   int improve_rounds = 10;
   bool repair = false;
+  bool world_frame = false;
   int threads = 0;
   bool quiet = false;
 };
@@ -64,6 +65,7 @@ int run(const Options& o) {
   ro.improve = !o.no_improve;
   ro.improve_iterations = o.improve_rounds;
   ro.threads = o.threads;
+  ro.rotate_to_planes = !o.world_frame;
   // --threads bounds every parallel loop of the command (the zone unions, and the improvement's
   // and the final checks' self-intersection tests), not only the reconstructor's own.
   std::optional<tbb::global_control> thread_limit;
@@ -127,6 +129,7 @@ int run(const Options& o) {
   j["zones"] = {{"total", rr.zones}, {"empty", rr.empty_zones}, {"end", rr.end_zones}, {"body", rr.body_zones},
                 {"union_by_box", rr.zones_filled}, {"union_in_2d", rr.zones_stacked}};
   j["primitives"] = rr.primitives;
+  j["rotated_frame"] = rr.rotated_frame;
   j["topology_edits"] = edits.size();
   j["improve_rounds"] = o.no_improve ? 0 : o.improve_rounds;
   // read (and --repair), the reconstructor's stages and total, then the command's own checks of
@@ -165,6 +168,9 @@ void setup(CLI::App& root) {
       ->excludes(no_improve);
   cmd->add_flag("--repair", opts->repair,
                 "Split curves that touch or cross themselves into simple curves (traced contours; docs/formats.md)");
+  cmd->add_flag("--world-frame", opts->world_frame,
+                "Reconstruct tilted planes in the world frame (chapter 6's convex zones), not on the grid in their own "
+                "frame (docs/reconstruction.md)");
   cmd->add_option("--threads", opts->threads, "Worker threads (0: all)");
   cmd->add_flag("-q,--quiet", opts->quiet, "No progress lines");
   cmd->callback([opts] { run(*opts); });

@@ -72,8 +72,11 @@ struct DeformStats {
   std::vector<double> energies;
   int iterations = 0;
   bool converged = false;
-  // deform() with Anderson acceleration: iterations whose accelerated iterate lowered the
-  // energy, and those where it did not and the plain iterate was taken (one more local step).
+  // deform() with Anderson acceleration: iterations that took the accelerated iterate, and
+  // those that did not. At lambda = 1 (a descent) an accelerated iterate is taken only if it
+  // lowers the energy; otherwise the plain iterate is taken (one more local step) and the
+  // history restarts. Below 1 every accelerated iterate is taken, and rejected_accelerations
+  // counts the restarts of the history (the fixed-point residual grew past twice its minimum).
   int accelerated_iterations = 0, rejected_accelerations = 0;
   double max_handle_residual = 0;  // largest |x_h - target_h| (0 by construction)
   double total_ms = 0;             // of the last deform()/drag() call

@@ -13,8 +13,11 @@
 #include <mutex>
 #include <thread>
 #include <tuple>
+#include <unordered_map>
 
+#include "modeling/aligned_frame.h"
 #include "modeling/cavity_fill.h"
+#include "modeling/content_cache.h"
 #include "modeling/cylinder_builder.h"
 #include "modeling/face_intersections.h"
 #include "modeling/frustum_builder.h"
@@ -38,6 +41,20 @@
 
 namespace ps {
 namespace {
+
+// A point by its bits (the frame's points map back to the input's exactly).
+struct PointKey {
+  std::array<double, 3> c;
+  explicit PointKey(const Vec3& p) : c{p.x(), p.y(), p.z()} {}
+  bool operator==(const PointKey& o) const { return std::memcmp(c.data(), o.c.data(), sizeof c) == 0; }
+};
+struct PointKeyHash {
+  std::size_t operator()(const PointKey& k) const {
+    ContentHash h;
+    h.bytes(k.c.data(), sizeof k.c);
+    return static_cast<std::size_t>(h.h);
+  }
+};
 
 std::size_t uz(int i) { return static_cast<std::size_t>(i); }
 
@@ -490,6 +507,7 @@ ProgressiveReconstructor::ProgressiveReconstructor(ReconstructOptions options) :
 void ProgressiveReconstructor::set_box(const Box3& box) {
   box_ = box;
   box_fixed_ = !box.empty();
+  frame_ = AlignedFrame{};
   cache_.clear();
 }
 
@@ -498,6 +516,7 @@ void ProgressiveReconstructor::clear() {
   mesh_ = TriMesh{};
   box_ = Box3{};
   box_fixed_ = false;
+  frame_ = AlignedFrame{};
   cache_.clear();
   edits_.clear();
 }
@@ -679,6 +698,18 @@ Result<TriMesh> ProgressiveReconstructor::update(const SectionSet& sections, con
 
 Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, const std::vector<TopologyEdit>& edits,
                                                       std::size_t strict_from, ReconstructReport* report) {
+  bool used_frame = false;
+  auto r = update_in_frame(input, edits, strict_from, report, options_.rotate_to_planes, &used_frame);
+  if (r || !used_frame) return r;
+  // The grid in the planes' frame failed where the world frame may not (rounding of the rotated
+  // points; never seen on the data sets): chapter 6 decides, and its verdict stands.
+  return update_in_frame(input, edits, strict_from, report, false, &used_frame);
+}
+
+Result<TriMesh> ProgressiveReconstructor::update_in_frame(const SectionSet& input,
+                                                          const std::vector<TopologyEdit>& input_edits,
+                                                          std::size_t strict_from, ReconstructReport* report,
+                                                          bool allow_frame, bool* used_frame) {
   const auto t_total = Clock::now();
   ReconstructReport rep;
   auto progress = [&](const char* stage, double f) {
@@ -691,6 +722,28 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
   auto checked = validate_sections(input);
   if (!checked) return checked.status();
   SectionSet canonical = canonical_sections(checked->sections);
+  // === Planes in at most three orthogonal directions other than the axes (a tilted stack):
+  // the grid of chapter 4 in their frame (aligned_frame.h). The frame's points map back to the
+  // caller's exactly at the end, the rest of the mesh by the inverse rotation.
+  std::optional<AlignedFrame> frame = allow_frame ? aligned_frame(canonical) : std::nullopt;
+  std::unordered_map<PointKey, Vec3, PointKeyHash> world_of;  // frame point -> input point
+  std::vector<TopologyEdit> edits = input_edits;
+  if (frame) {
+    *used_frame = true;
+    SectionSet framed = to_aligned_frame(canonical, *frame);
+    for (std::size_t c = 0; c < framed.curves.size(); ++c)
+      for (std::size_t j = 0; j < framed.curves[c].points.size(); ++j) {
+        const Vec3& w = canonical.curves[c].points[j];
+        auto [it, fresh] = world_of.emplace(PointKey(framed.curves[c].points[j]), w);
+        // Two input points on one frame point (within rounding of each other): the smaller, so
+        // that the choice does not depend on the order of the input.
+        if (!fresh && std::make_tuple(w.x(), w.y(), w.z()) < std::make_tuple(it->second.x(), it->second.y(), it->second.z()))
+          it->second = w;
+      }
+    canonical = canonical_sections(framed);
+    for (auto& e : edits)
+      for (auto& p : e.stroke) p = frame->to_frame(p);
+  }
   // Rule 4: crossing points of curves on perpendicular planes closer than 2% of the diagonal
   // become one shared vertex (the stitching of zones needs them to agree exactly).
   rep.warnings = checked->warnings;
@@ -722,6 +775,9 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
         break;
       }
   }
+  // The kept box is in the previous update's frame; another frame sets it anew.
+  const AlignedFrame this_frame = frame ? *frame : AlignedFrame{};
+  if (inside && this_frame.rotation != frame_.rotation) inside = false;
   if (!inside) box = default_reconstruction_box(points);
   // === Scale normalisation. Everything below runs on the input scaled by 2^k so that the box
   // diagonal lies in [1, 2): CGAL's static filters give up far from unit scale (coordinates of
@@ -739,9 +795,9 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
   TriMesh mesh;
   if (!orthogonal && strict_from < edits.size())
     return Result<TriMesh>::error(std::string(topology_edit_name(edits[strict_from].kind)) +
-                                  ": topology edits apply to sections on axis planes only");
+                                  ": topology edits apply to sections on planes of at most three orthogonal directions only");
   if (!orthogonal && !edits.empty())
-    rep.warnings.push_back("topology edits were skipped: they apply to sections on axis planes only");
+    rep.warnings.push_back("topology edits were skipped: they apply to sections on planes of at most three orthogonal directions only");
   if (!orthogonal) {
     auto built = reconstruct_polyhedral(scaled, box, rep, progress, options_.threads);
     t = Clock::now();
@@ -862,13 +918,29 @@ Result<TriMesh> ProgressiveReconstructor::update_with(const SectionSet& input, c
   // Back to the caller's units: exact, and curve vertices are the input points themselves.
   for (auto& v : mesh.vertices)
     for (int c = 0; c < 3; ++c) v[c] = std::ldexp(v[c], -k);
+  // Back to the world frame: each input point exactly, every other vertex rotated. Rotating
+  // rounds (a few ulps), and two faces closer than that could cross: the result is checked,
+  // and the caller falls back to chapter 6 in the world frame if they do.
+  if (frame) {
+    t = Clock::now();
+    for (auto& v : mesh.vertices) {
+      const auto it = world_of.find(PointKey(v));
+      v = it != world_of.end() ? it->second : frame->to_world(v);
+    }
+    if (const auto pairs = self_intersecting_pairs(mesh); !pairs.empty())
+      return Result<TriMesh>::error("reconstruction failed: rotating the result back to the world frame made faces " +
+                                    std::to_string(pairs[0][0]) + " and " + std::to_string(pairs[0][1]) + " intersect");
+    rep.rotated_frame = true;
+    rep.timings.stitch_ms += ms_since(t);
+  }
 
   // === Commit state
   cache_ = std::move(cache);
   box_ = user_box;
   box_fixed_ = true;
+  frame_ = this_frame;
   sections_ = input;
-  edits_ = edits;
+  edits_ = input_edits;
   mesh_ = mesh;
   rep.timings.total_ms = ms_since(t_total);
   if (report) *report = std::move(rep);

@@ -16,6 +16,7 @@
 #include <memory>
 #include <vector>
 
+#include "modeling/aligned_frame.h"
 #include "modeling/cross_section.h"
 #include "modeling/mesh.h"
 #include "modeling/reconstruct.h"
@@ -39,7 +40,9 @@ class ProgressiveReconstructor {
   Result<TriMesh> replace(int curve, const std::vector<Vec3>& points, ReconstructReport* report = nullptr);
   Result<TriMesh> remove(int curve, ReconstructReport* report = nullptr);
 
-  // Topology editing (thesis 6.4, topology_edit.h), on sections of axis planes: the edit is kept
+  // Topology editing (thesis 6.4, topology_edit.h), on sections of axis planes (or of planes in
+  // at most three orthogonal directions, which run on the grid in their own frame,
+  // aligned_frame.h; the strokes stay in world coordinates): the edit is kept
   // and applied again on every later update (a kept edit that no longer applies, because the
   // sections changed under it, is skipped with a warning). On error nothing changes.
   Result<TriMesh> join(const std::vector<Vec3>& stroke, ReconstructReport* report = nullptr);
@@ -73,8 +76,13 @@ class ProgressiveReconstructor {
     void clear() { *this = Caches{}; }
   };
   // Edits from index `strict_from` on must apply; earlier ones are skipped with a warning.
+  // Planes that a rotation makes axis planes go to the grid in that frame first; if that fails
+  // (rounding in the frame), to the convex zones of chapter 6 in the world frame.
   Result<TriMesh> update_with(const SectionSet& sections, const std::vector<TopologyEdit>& edits,
                               std::size_t strict_from, ReconstructReport* report);
+  Result<TriMesh> update_in_frame(const SectionSet& sections, const std::vector<TopologyEdit>& edits,
+                                  std::size_t strict_from, ReconstructReport* report, bool allow_frame,
+                                  bool* used_frame);
   Result<TriMesh> reconstruct_grid(const ValidatedSections& scaled, const Box3& box, double tol, int scale_exponent,
                                    const std::vector<TopologyEdit>& edits, std::size_t strict_from,
                                    ReconstructReport& rep, const std::function<void(const char*, double)>& progress,
@@ -82,8 +90,9 @@ class ProgressiveReconstructor {
   ReconstructOptions options_;
   SectionSet sections_;
   TriMesh mesh_;
-  Box3 box_;
+  Box3 box_;  // in frame_'s coordinates
   bool box_fixed_ = false;
+  AlignedFrame frame_;  // of the last update (identity for axis planes and for chapter 6)
   Caches cache_;
   std::vector<TopologyEdit> edits_;
 };

@@ -24,6 +24,9 @@ struct ReconstructOptions {
   bool improve = true;           // refinement + smoothing (4.5.1)
   int improve_iterations = 10;
   int threads = 0;               // 0: all hardware threads; results are identical for any count
+  // Planes in at most three orthogonal directions other than the axes (a tilted stack) go to the
+  // grid of chapter 4 in their own frame (aligned_frame.h); false: chapter 6 in the world frame.
+  bool rotate_to_planes = true;
   // Called with a stage name and a fraction in [0, 1]; used to show progress on long runs.
   // The union stage of planes of any orientation reports per zone from the worker threads,
   // one call at a time.
@@ -44,6 +47,9 @@ struct ReconstructReport {
   int zones_recomputed = 0;  // zones whose union was computed (not taken from the cache)
   int zones_filled = 0;      // of those, zones filled by six whole-face prisms: their box (zone_box_union.h)
   int zones_stacked = 0;     // of those, straight prisms along one axis united in 2D (zone_stacked_union.h)
+  // The planes took at most three orthogonal directions other than the axes, and the grid ran
+  // in their frame (aligned_frame.h); the mesh is in world coordinates all the same.
+  bool rotated_frame = false;
   int components = 0;
   bool improved = false;
   StageTimings timings;

@@ -28,6 +28,14 @@ namespace {
 
 using ps::testing::no_improve;
 
+// Chapter 6 in the world frame even where the planes take at most three orthogonal directions
+// (those go to the grid in their own frame by default: aligned_frame.h, recon_aligned_frame_test).
+ReconstructOptions chapter6() {
+  ReconstructOptions o = no_improve();
+  o.rotate_to_planes = false;
+  return o;
+}
+
 // A circle of radius r about c on the plane through c with normal n.
 std::vector<Vec3> circle_on(const Vec3& c, const Vec3& n, double r, int count) {
   Plane pl{n.normalized(), n.normalized().dot(c)};
@@ -49,24 +57,13 @@ void expect_valid(const SectionSet& s, const TriMesh& m, const char* what) {
   EXPECT_LE(max_distance_to_surface(m, pts), 1e-6 * diag) << what;
 }
 
-SectionSet rotated(const SectionSet& s, const Eigen::Matrix3d& r, const Vec3& t) {
-  SectionSet out = s;
-  for (auto& p : out.planes) {
-    p.normal = r * p.normal;
-    p.offset = p.normal.dot(t) + p.offset;
-  }
-  for (auto& c : out.curves)
-    for (auto& p : c.points) p = r * p + t;
-  return out;
-}
-
 TEST(ReconArbitrary, SingleObliqueCircleGivesOneClosedSolid) {
   SectionSet s;
   const Vec3 n = Vec3(1, 1, 0).normalized();
   s.planes.push_back(Plane{n, 0.0});
   s.curves.push_back(CrossSection{0, circle_on(Vec3::Zero(), n, 1.0, 24)});
   ReconstructReport rep;
-  auto m = reconstruct(s, no_improve(), &rep);
+  auto m = reconstruct(s, chapter6(), &rep);
   ASSERT_TRUE(m) << m.message();
   expect_valid(s, *m, "single oblique circle");
   EXPECT_EQ(mesh_topology(*m).components, 1);
@@ -80,7 +77,7 @@ TEST(ReconArbitrary, TwoTiltedParallelSectionsMakeOneSolid) {
   s.planes.push_back(Plane{n, 1.0});
   s.curves.push_back(CrossSection{0, circle_on(Vec3::Zero(), n, 1.0, 30)});
   s.curves.push_back(CrossSection{1, circle_on(n, n, 0.8, 30)});
-  auto m = reconstruct(s, no_improve());
+  auto m = reconstruct(s, chapter6());
   ASSERT_TRUE(m) << m.message();
   expect_valid(s, *m, "two parallel tilted circles");
   EXPECT_EQ(mesh_topology(*m).components, 1);
@@ -110,9 +107,9 @@ TEST(ReconArbitrary, RotatedOrthogonalInputMatchesTheOrthogonalVolume) {
   auto ortho = reconstruct(s, no_improve());
   ASSERT_TRUE(ortho) << ortho.message();
   const Eigen::Matrix3d r = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
-  const SectionSet t = rotated(s, r, Vec3(0.3, -0.2, 0.1));
+  const SectionSet t = moved_sections(s, r, Vec3(0.3, -0.2, 0.1));
   ReconstructReport rep;
-  auto m = reconstruct(t, no_improve(), &rep);
+  auto m = reconstruct(t, chapter6(), &rep);
   ASSERT_TRUE(m) << m.message();
   expect_valid(t, *m, "rotated ellipsoid sections");
   const double v0 = mesh_topology(*ortho).signed_volume, v1 = mesh_topology(*m).signed_volume;

@@ -135,4 +135,16 @@ inline SectionSet torus_slices(double R, double r, int n = 48) {
   return s;
 }
 
+// s with every plane and point turned by r and moved by t.
+inline SectionSet moved_sections(const SectionSet& s, const Eigen::Matrix3d& r, const Vec3& t) {
+  SectionSet out = s;
+  for (auto& p : out.planes) {
+    p.normal = r * p.normal;
+    p.offset = p.normal.dot(t) + p.offset;
+  }
+  for (auto& c : out.curves)
+    for (auto& p : c.points) p = r * p + t;
+  return out;
+}
+
 }  // namespace ps::testing
