@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -193,16 +194,242 @@ Status check_stroke(const TopologyEdit& e) {
   return Status::ok();
 }
 
+// === Join across zones (thesis 6.4.1, figure 6.8)
+//
+// The zones between the two parts: a walk through face-adjacent grid cells along the segment
+// from the first prism's top to the middle of the second prism (a 3D DDA; where the segment meets
+// an edge or a corner of cells, one axis is crossed at a time, x before y before z). Each step
+// crosses one common face G_i between zones Z_(i-1) and Z_i, at the point `through[i]` where the
+// segment meets its plane (through[0] is `from`).
+std::vector<int> zone_chain(const Partition& part, const Vec3& from, const Vec3& to, int first, int last,
+                            std::vector<Vec3>& through) {
+  const ZoneGrid& g = part.grid;
+  std::array<int, 3> cell = part.zones[uz(first)].cell;
+  const std::array<int, 3> goal = part.zones[uz(last)].cell;
+  std::vector<int> chain{first};
+  through.assign(1, from);
+  const Vec3 d = to - from;
+  const int limit = g.cells(0) + g.cells(1) + g.cells(2);
+  while (cell != goal && static_cast<int>(chain.size()) <= limit) {
+    // The axis whose next cell boundary the segment reaches first; an axis already at the goal's
+    // cell does not move.
+    int axis = -1;
+    double best = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      if (cell[uz(k)] == goal[uz(k)]) continue;
+      const int step = goal[uz(k)] > cell[uz(k)] ? 1 : -1;
+      const double plane = g.coords[uz(k)][uz(cell[uz(k)] + (step > 0 ? 1 : 0))];
+      const double t = d[k] != 0.0 ? (plane - from[k]) / d[k] : std::numeric_limits<double>::infinity();
+      if (axis < 0 || t < best) {
+        best = t;
+        axis = k;
+      }
+    }
+    cell[uz(axis)] += goal[uz(axis)] > cell[uz(axis)] ? 1 : -1;
+    chain.push_back(g.index(cell));
+    through.push_back(from + std::clamp(best, 0.0, 1.0) * d);
+  }
+  return chain;
+}
+
+// The face of zone `z` shared with the face-adjacent zone `n`: index 0..5 (-x,+x,-y,+y,-z,+z).
+int shared_face(const Zone& z, const Zone& n) {
+  for (int k = 0; k < 3; ++k)
+    if (n.cell[uz(k)] != z.cell[uz(k)]) return 2 * k + (n.cell[uz(k)] > z.cell[uz(k)] ? 1 : 0);
+  return -1;
+}
+
+// Points `from[0..n)` projected along `d` onto the plane x_j = c of face `f` (j = f / 2), then
+// shrunk towards their centroid in that plane until they lie inside the face by 0.5% of its
+// extent (100% down to 30% in steps of 10%). Nothing when a point is not ahead of the plane
+// along d, or when no shrink fits.
+std::optional<std::vector<Vec3>> project_onto_face(const std::vector<Vec3>& from, const Vec3& d, const Zone& z, int f) {
+  const int j = f / 2;
+  const double c = f % 2 == 0 ? z.min[j] : z.max[j];
+  const double floor_s = 1e-9 * z.extent(j);
+  std::vector<Vec3> out;
+  for (const Vec3& p : from) {
+    const double s = d[j] != 0.0 ? (c - p[j]) / d[j] : -1.0;
+    if (!(s * d.norm() > floor_s)) return std::nullopt;
+    Vec3 q = p + s * d;
+    q[j] = c;
+    out.push_back(q);
+  }
+  const Vec3 centre = centroid(out, 0, out.size());
+  for (int step = 10; step >= 3; --step) {
+    const double f_scale = step / 10.0;
+    std::vector<Vec3> shrunk = out;
+    bool inside_face = true;
+    for (auto& q : shrunk) {
+      for (int a = 0; a < 3; ++a) {
+        if (a == j) continue;
+        q[a] = centre[a] + f_scale * (q[a] - centre[a]);
+        const double margin = 0.005 * z.extent(a);
+        if (!(q[a] > z.min[a] + margin && q[a] < z.max[a] - margin)) inside_face = false;
+      }
+      q[j] = c;
+    }
+    if (inside_face) return shrunk;
+  }
+  return std::nullopt;
+}
+
+// A prism-shaped solid (the layout of PrimitiveInfo) is a valid operand: positive volume and no
+// two faces crossing.
+bool valid_solid(const TriMesh& m) {
+  double six_volume = 0.0;
+  for (const auto& f : m.faces)
+    six_volume += m.vertices[uz(f[0])].dot(m.vertices[uz(f[1])].cross(m.vertices[uz(f[2])]));
+  if (!(six_volume > 0.0)) return false;
+  std::vector<int> all(m.faces.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  return intersecting_face_pairs(m.vertices, m.faces, all).empty();
+}
+
+// Whether a primitive other than `skip` of zone `zi` has a vertex on the plane of face `f`,
+// within that face: material there would meet the new cap.
+bool face_touched(const Partition& part, const std::vector<ZonePrimitives>& prims, int zi, int f, int skip) {
+  const Zone& z = part.zones[uz(zi)];
+  const int j = f / 2;
+  const double c = f % 2 == 0 ? z.min[j] : z.max[j];
+  const auto& zp = prims[uz(zi)];
+  for (std::size_t i = 0; i < zp.solids.size(); ++i) {
+    if (static_cast<int>(i) == skip) continue;
+    for (const auto& v : zp.solids[i].vertices) {
+      if (v[j] != c) continue;
+      bool within = true;
+      for (int a = 0; a < 3; ++a)
+        if (a != j && !(v[a] >= z.min[a] && v[a] <= z.max[a])) within = false;
+      if (within) return true;
+    }
+  }
+  return false;
+}
+
+Status join_across_zones(const Partition& part, std::vector<ZonePrimitives>& prims, PrimRef a, PrimRef b) {
+  const Zone& za = part.zones[uz(a.first)];
+  const TriMesh& ma = prims[uz(a.first)].solids[uz(a.second)];
+  const PrimitiveInfo& ia = prims[uz(a.first)].info[uz(a.second)];
+  if (!interior(ma, ia, za))
+    return Status::error("join: the first part reaches a side of its zone (its walls continue in the neighbour "
+                         "zone), so it cannot be extended; start the stroke on the other part");
+  const auto n = uz(ia.bottom_count);
+  const TriMesh& mb = prims[uz(b.first)].solids[uz(b.second)];
+  const Vec3 b_middle = centroid(mb.vertices, 0, mb.vertices.size());
+  std::vector<Vec3> through;
+  const std::vector<int> chain =
+      zone_chain(part, centroid(ma.vertices, n, 2 * n), b_middle, a.first, b.first, through);
+  if (chain.back() != b.first) return Status::error("join: no chain of zones leads from one part to the other");
+  // What the chain may cross: faces without sections, zones between the two without material,
+  // and no other primitive of the two end zones on the faces the new frusta cross.
+  for (std::size_t i = 1; i < chain.size(); ++i) {
+    const Zone& prev = part.zones[uz(chain[i - 1])];
+    const Zone& next = part.zones[uz(chain[i])];
+    const int f = shared_face(prev, next);
+    if (prev.face_has_section(f))
+      return Status::error("join: the way between the parts crosses a zone face that holds a section");
+    if (i + 1 < chain.size() && !prims[uz(chain[i])].solids.empty())
+      return Status::error("join: the way between the parts crosses a zone that holds other parts");
+    if (i == 1 && face_touched(part, prims, chain[0], f, a.second))
+      return Status::error("join: another frustum of the first part's zone lies on the face the join crosses");
+    if (i + 1 == chain.size() && face_touched(part, prims, chain[i], f ^ 1, -1))
+      return Status::error("join: another frustum of the second part's zone lies on the face the join crosses");
+  }
+  // The first frustum's top: its bottom projected onto the first common face along the direction
+  // from the bottom's centre to where the segment between the parts crosses that face (the thesis
+  // aims at the face's centre, which on a large face leads the tube away from the parts; the
+  // crossing, kept 10% of the face's extent inside it, follows them); then frustum by frustum
+  // through the chain.
+  std::vector<Vec3> bottom(ma.vertices.begin(), ma.vertices.begin() + static_cast<std::ptrdiff_t>(n));
+  std::vector<std::pair<int, TriMesh>> changed;  // (zone, solid); the first replaces a's prism
+  std::vector<int> faces;                        // per new frustum: its bottom face in its zone
+  for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
+    const Zone& z = part.zones[uz(chain[i])];
+    const int f = shared_face(z, part.zones[uz(chain[i + 1])]);
+    const Vec3 c = bottom.empty() ? Vec3::Zero() : centroid(bottom, 0, bottom.size());
+    Vec3 aim = through[i + 1];
+    for (int k = 0; k < 3; ++k)
+      aim[k] = k == f / 2 ? (f % 2 == 0 ? z.min[k] : z.max[k])
+                          : std::clamp(aim[k], z.min[k] + 0.1 * z.extent(k), z.max[k] - 0.1 * z.extent(k));
+    auto top = project_onto_face(bottom, aim - c, z, f);
+    if (!top)
+      return Status::error("join: the frustum cannot be carried across zone " + std::to_string(chain[i]) +
+                           (i == 0 ? " (the other part lies behind its section)" : " (its top does not fit the face)"));
+    TriMesh m = ma;
+    for (std::size_t v = 0; v < n; ++v) {
+      m.vertices[v] = bottom[v];
+      m.vertices[n + v] = (*top)[v];
+    }
+    if (!valid_solid(m))
+      return Status::error("join: the frustum carried across zone " + std::to_string(chain[i]) + " would fold");
+    changed.emplace_back(chain[i], std::move(m));
+    if (i > 0) faces.push_back(shared_face(z, part.zones[uz(chain[i - 1])]));
+    bottom = std::move(*top);
+  }
+  // The last zone: the carried section translated towards the middle of the second part (the
+  // thesis: its top; the middle keeps the tube inside the zone where the top lies near a face)
+  // until the two overlap, plus two steps of margin (a touching union is fragile), inside the
+  // zone.
+  const Zone& zb = part.zones[uz(b.first)];
+  const int fb = shared_face(zb, part.zones[uz(chain[chain.size() - 2])]);
+  const Vec3 d = b_middle - centroid(bottom, 0, bottom.size());
+  constexpr int kSteps = 20, kMargin = 2;
+  auto frustum = [&](int step) -> std::optional<TriMesh> {
+    TriMesh m = ma;
+    for (std::size_t v = 0; v < n; ++v) {
+      m.vertices[v] = bottom[v];
+      m.vertices[n + v] = bottom[v] + (static_cast<double>(step) / kSteps) * d;
+      for (int k = 0; k < 3; ++k) {
+        const double margin = 0.005 * zb.extent(k);
+        if (!(m.vertices[n + v][k] > zb.min[k] + margin && m.vertices[n + v][k] < zb.max[k] - margin))
+          return std::nullopt;
+      }
+    }
+    return m;
+  };
+  // (The first steps may leave the top within the margin of the face it rises from.)
+  bool was_inside = false;
+  for (int step = 1; step <= kSteps; ++step) {
+    auto m = frustum(step);
+    if (!m) {
+      if (was_inside) break;
+      continue;
+    }
+    was_inside = true;
+    if (!overlap(*m, mb)) continue;
+    for (int s = std::min(step + kMargin, kSteps); s >= step; --s) {
+      auto last = frustum(s);
+      if (!last || !valid_solid(*last)) continue;
+      // Commit: the first part's prism becomes the first frustum (not a body prism of Eq. 4.1
+      // any more: later edits leave it alone), the others are added to their zones.
+      auto& pa = prims[uz(a.first)];
+      pa.solids[uz(a.second)] = std::move(changed.front().second);
+      pa.info[uz(a.second)].body = false;
+      pa.info[uz(a.second)].verified = false;
+      changed.emplace_back(b.first, std::move(*last));
+      faces.push_back(fb);
+      for (std::size_t c = 1; c < changed.size(); ++c) {
+        auto& zp = prims[uz(changed[c].first)];
+        PrimitiveInfo info = ia;
+        info.face = faces[c - 1];
+        info.body = false;
+        info.verified = false;
+        zp.solids.push_back(std::move(changed[c].second));
+        zp.info.push_back(info);
+      }
+      return Status::ok();
+    }
+  }
+  return Status::error("join: the carried frustum does not reach the second part within its zone");
+}
+
 // === Join
 Status join(const Partition& part, std::vector<ZonePrimitives>& prims, const TopologyEdit& e) {
   PrimRef a = nearest_body_prism(prims, e.stroke.front());
   PrimRef b = nearest_body_prism(prims, e.stroke.back());
   if (a.first < 0 || b.first < 0) return Status::error("join: there is no frustum of a body zone to join");
   if (a == b) return Status::error("join: both ends of the stroke select the same part");
-  if (a.first != b.first)
-    return Status::error(
-        "join: the two parts lie in different zones; joining across zones (the zone chain of thesis 6.4) is not "
-        "supported");
+  if (a.first != b.first) return join_across_zones(part, prims, a, b);
   const Zone& z = part.zones[uz(a.first)];
   auto& zp = prims[uz(a.first)];
   if (!interior(zp.solids[uz(a.second)], zp.info[uz(a.second)], z)) std::swap(a, b);

@@ -10,6 +10,15 @@
 //         second prism (a shear of the whole prism, so it stays valid) in steps of 5% of the
 //         centroid offset until the two solids overlap, plus two steps of margin. The top stays
 //         inside the zone by 0.5% of its extent.
+//         In different zones (6.4.1, figure 6.8): the chain of face-adjacent zones along the
+//         segment from the first prism's top to the middle of the second prism. The first
+//         prism's bottom is projected onto the first common face (its new top), towards the
+//         point where the segment crosses that face; that top is the bottom of a frustum in the
+//         next zone, projected onto the next common face, and so on; in the second part's zone
+//         the carried section is translated towards that part's middle until they overlap, as
+//         in one zone. Tops are shrunk towards their centre (to 30%) to fit inside their face.
+//         The carried frusta replace the first prism and join the chain's zones as primitives
+//         of their own (not body prisms: later edits leave them alone).
 //   Split (a stroke across a local part): the body zone holding the stroke's middle point, and
 //         in it the group of prisms connected by overlap that contains the prism nearest that
 //         point. Every prism of the group is shrunk towards its bottom (heights times 0.8, 0.64,
@@ -19,9 +28,10 @@
 //
 // Edits are geometric (the stroke, in the reconstruction's coordinates), not indices, so they
 // are resolved again on every update and survive sections added elsewhere. What is refused, with
-// the reason: a join whose parts lie in different zones (the zone chain of 6.4 is not built), a
-// join or split that would move a prism reaching a side face or continuing into an end zone,
-// a stroke over no body zone, a part of a single prism.
+// the reason: a join across zones whose chain crosses a zone face holding a section, a zone
+// holding other material, or another frustum on a face it crosses; a join or split that would
+// move a prism reaching a side face or continuing into an end zone; a carried frustum that would
+// fold or not fit its face; a stroke over no body zone; a part of a single prism.
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>

@@ -88,6 +88,91 @@ TEST(ReconTopologyEdit, JoinConnectsTwoSeparateParts) {
   EXPECT_FALSE(r.undo_edit());
 }
 
+// Two parts in different zones: circles on z = 0 and z = 1 at x = 0 and at x = 3, and planes
+// x = c carrying a small section off to the side and above (y = 3, z = 2.5; a part of its own),
+// which cut the slab between the parts into zones whose shared faces hold no section there (one
+// cut: neighbouring zones; two: an empty zone between them).
+// Parts standing on two planes z = 0 and z = 1: a circle on each at every x of `xs`.
+SectionSet stacked_parts(std::initializer_list<double> xs) {
+  SectionSet s;
+  for (double z : {0.0, 1.0}) {
+    Plane pl;
+    pl.normal = Vec3::UnitZ();
+    pl.offset = z;
+    s.planes.push_back(pl);
+    for (double x : xs)
+      s.curves.push_back(CrossSection{static_cast<int>(s.planes.size()) - 1,
+                                      testing::ellipse(2, z, x, 0.0, 0.5, 0.5, 40)});
+  }
+  return s;
+}
+
+TEST(ReconTopologyEdit, JoinCarriesTheFrustumAcrossZones) {
+  for (const auto& cuts : {std::vector<double>{1.5}, std::vector<double>{1.0, 2.0}}) {
+    SectionSet s = stacked_parts({0.0, 3.0});
+    for (double c : cuts) testing::add_circle(s, 0, c, 3.0, 2.5, 0.3);
+    ProgressiveReconstructor r(no_improve());
+    auto apart = r.update(s);
+    ASSERT_TRUE(apart) << apart.message();
+    const int before = components(*apart);
+    ASSERT_EQ(before, 3);  // the two parts and the side sections (two of them are one part)
+    ReconstructReport rep;
+    auto joined = r.join({Vec3(0.0, 0.0, 0.5), Vec3(3.0, 0.0, 0.5)}, &rep);
+    ASSERT_TRUE(joined) << joined.message();
+    EXPECT_EQ(components(*joined), before - 1) << cuts.size() << " cut(s)";
+    expect_valid(*joined, s);
+    // The tube between the parts passes through the zones between them: the surface crosses the
+    // plane x = 1.25 between the parts, at their height (and did not before).
+    auto crossings = [](const TriMesh& m) {
+      int count = 0;
+      for (const auto& f : m.faces) {
+        double lo = 1e300, hi = -1e300;
+        bool near = true;
+        for (int i : f) {
+          const Vec3& v = m.vertices[static_cast<std::size_t>(i)];
+          lo = std::min(lo, v.x());
+          hi = std::max(hi, v.x());
+          near = near && std::abs(v.y()) < 1.0 && v.z() >= 0.0 && v.z() <= 1.0;
+        }
+        count += near && lo < 1.25 && hi > 1.25;
+      }
+      return count;
+    };
+    EXPECT_EQ(crossings(*apart), 0);
+    EXPECT_GT(crossings(*joined), 0);
+    // Only the zones of the chain are recomputed (the first part's, those crossed, the second's).
+    EXPECT_LE(rep.zones_recomputed, static_cast<int>(cuts.size()) + 2);
+    // Reversed stroke: the second part is carried to the first.
+    ProgressiveReconstructor other(no_improve());
+    ASSERT_TRUE(other.update(s));
+    auto reversed = other.join({Vec3(3.0, 0.0, 0.5), Vec3(0.0, 0.0, 0.5)});
+    ASSERT_TRUE(reversed) << reversed.message();
+    EXPECT_EQ(components(*reversed), before - 1);
+    expect_valid(*reversed, s);
+    // Undo gives back the parts, bit for bit.
+    auto undone = r.undo_edit();
+    ASSERT_TRUE(undone) << undone.message();
+    EXPECT_TRUE(undone->vertices == apart->vertices);
+    EXPECT_TRUE(undone->faces == apart->faces);
+  }
+}
+
+TEST(ReconTopologyEdit, JoinAcrossAFaceHoldingASectionIsRefusedAndChangesNothing) {
+  // The plane x = 1.5 between the parts holds a section in their slab (off to the side, y = 3):
+  // the frustum cannot be carried through that face.
+  SectionSet s = stacked_parts({0.0, 3.0});
+  testing::add_circle(s, 0, 1.5, 3.0, 0.5, 0.3);
+  ProgressiveReconstructor r(no_improve());
+  auto apart = r.update(s);
+  ASSERT_TRUE(apart) << apart.message();
+  ASSERT_EQ(components(*apart), 3);
+  const auto e = r.join({Vec3(0.0, 0.0, 0.5), Vec3(3.0, 0.0, 0.5)});
+  ASSERT_FALSE(e);
+  EXPECT_NE(e.message().find("holds a section"), std::string::npos) << e.message();
+  EXPECT_TRUE(r.edits().empty());
+  EXPECT_TRUE(r.mesh().vertices == apart->vertices);
+}
+
 TEST(ReconTopologyEdit, JoinInEitherStrokeDirectionConnects) {
   // Reversed: the prism moved is the one the stroke starts on.
   const SectionSet s = two_circles(2.0);
