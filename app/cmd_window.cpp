@@ -550,6 +550,29 @@ class WindowApp {
           act(panel_t_, ps::SetParameter{name, *v});
       }
     }
+    // The deformation tool (docs/deformation.md): the base plane turned about its axis (radians,
+    // read when the target stroke is drawn), a shadow stroke on the projection plane after the
+    // target, and the radii of the default region and of brushes (fractions of the diagonal).
+    if (in.mode == "deform" || in.mode == "sculpt" || in.mode == "roi" || in.mode == "stiffness") {
+      auto value = [&](const char* name, double fallback) {
+        const auto it = in.parameters.find(name);
+        return it != in.parameters.end() ? it->second : fallback;
+      };
+      struct Slider {
+        const char* name;
+        double fallback;
+        float lo, hi;
+      };
+      for (const Slider& sl : {Slider{"deform_rotation", 0.0, -3.14f, 3.14f},
+                               Slider{"deform_radius", ps::app::kDefaultRoiRadius, 0.01f, 1.0f},
+                               Slider{"brush_radius", ps::app::kDefaultBrushRadius, 0.005f, 0.5f}}) {
+        ImGui::SetNextItemWidth(180.0f);
+        if (auto v = panel_value(sl.name, value(sl.name, sl.fallback), true, sl.lo, sl.hi))
+          act(panel_t_, ps::SetParameter{sl.name, *v});
+      }
+      bool shadow = value("deform_shadow", 0.0) != 0.0;
+      if (ImGui::Checkbox("deform_shadow", &shadow)) act(panel_t_, ps::SetParameter{"deform_shadow", shadow ? 1.0 : 0.0});
+    }
     const auto& st = shown_->state;
     ImGui::Text("%zu sections, %zu faces%s", st.sections.curves.size(), st.model.faces.size(),
                 worker_->caught_up() ? "" : ", rebuilding");

@@ -15,9 +15,8 @@
 
 namespace ps::app {
 namespace {
-// Defaults of the deformation tool's parameters (fractions of the bounding-box diagonal).
-constexpr double kRoiRadius = 0.2;
-constexpr double kBrushRadius = 0.05;
+constexpr double kRoiRadius = kDefaultRoiRadius;
+constexpr double kBrushRadius = kDefaultBrushRadius;
 }  // namespace
 
 SessionDriver::SessionDriver(SessionParams params) : session_(std::move(params)) {}

@@ -13,6 +13,11 @@
 
 namespace ps::app {
 
+// Defaults of the deformation tool's parameters (`parameter` events): the region's radius around
+// the handle and the brush radius, fractions of the model's bounding-box diagonal.
+inline constexpr double kDefaultRoiRadius = 0.2;
+inline constexpr double kDefaultBrushRadius = 0.05;
+
 struct DriverMessage {
   double t = 0.0;  // ms, log time
   int line = 0;    // source line in the log (0 when unknown)
