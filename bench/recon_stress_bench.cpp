@@ -26,7 +26,7 @@
 // Usage: recon_stress_bench [--cases N] [--first-seed S] [--timeout SEC] [--oblique-every K]
 //                           [--no-improve] [--oblique-only] [--max-planes P] [--points LO HI]
 //                           [--binary PATH] [--work DIR] [--keep-failures] [--only-seed S]
-//                           [--threads T] [--improve-rounds N]
+//                           [--threads T] [--improve-rounds N] [--turn]
 // --threads T is passed to every `planesketch reconstruct` (default 0: all cores, as the command
 // itself defaults to; issue 8's 10 s bound is for the tool as it runs on the 2-core machine).
 // Runs before 2026-12-06 18:00 UTC passed --threads 1; `--threads 1` repeats them.
@@ -38,6 +38,9 @@
 // inputs broken on purpose.
 // Case c has 2 + c % (P - 1) orthogonal planes (default P = 6) and curves of LO..HI points
 // (default 40..200, the generator's default).
+// --turn turns every clean case without oblique planes as a whole by a random rotation (variant
+// "turned as a whole"): planes in three orthogonal directions that are not the axes, which the
+// reconstruction runs on the grid in their own frame (modeling/aligned_frame.h).
 // With --oblique-every K > 0, every K-th clean case adds 1-3 oblique planes (default 0: the
 // orthogonal path only); --oblique-only skips every other case. Prints a Markdown summary;
 // exit status 1 when a case crashed, hung or broke a guarantee.
@@ -62,6 +65,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "modeling/contour_io.h"
 #include "modeling/mesh_slicer.h"
@@ -89,6 +94,7 @@ struct Args {
   bool keep_failures = false;
   int threads = 0;  // passed to the child's --threads (0: all cores)
   int improve_rounds = 0;  // passed to the child's --improve-rounds (0: not passed)
+  bool turn = false;
 };
 
 struct ChildResult {
@@ -317,6 +323,7 @@ int main(int argc, char** argv) {
       else if (k == "--keep-failures") a.keep_failures = true;
       else if (k == "--threads") a.threads = std::max(0, std::stoi(next()));
       else if (k == "--improve-rounds") a.improve_rounds = std::max(0, std::stoi(next()));
+      else if (k == "--turn") a.turn = true;
       else {
         std::fprintf(stderr, "recon_stress_bench: unknown option %s\n", k.c_str());
         return 2;
@@ -357,6 +364,15 @@ int main(int argc, char** argv) {
       const int w = (c / 4) % static_cast<int>(std::size(kPerturbations));
       variant = kPerturbations[w];
       slack = perturb(sections, w, rng);
+    } else if (family == 0 && !oblique && a.turn) {
+      // A rotation about a random axis by a random angle (not near a multiple of a quarter turn).
+      ps::Vec3 axis(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
+      if (!(axis.norm() > 0.1)) axis = ps::Vec3(1.0, 2.0, 3.0);
+      const Eigen::Matrix3d r = Eigen::AngleAxisd(rng.uniform(0.2, 1.3), axis.normalized()).toRotationMatrix();
+      for (auto& p : sections.planes) p.normal = r * p.normal;
+      for (auto& cs : sections.curves)
+        for (auto& q : cs.points) q = r * q;
+      variant = "turned as a whole";
     } else if (family == 2) {
       const int w = (c / 4) % static_cast<int>(std::size(kDefects));
       variant = kDefects[w];

@@ -18,6 +18,7 @@
 #include "modeling/mesh_topology.h"
 #include "modeling/progressive_reconstructor.h"
 #include "modeling/reconstruct.h"
+#include "modeling/section_generator.h"
 #include "recon_synthetic.h"
 
 using namespace ps;
@@ -189,6 +190,45 @@ TEST(AlignedFrame, TurnedOrthogonalSectionsMatchTheOrthogonalSolid) {
   EXPECT_NEAR(t.signed_volume / t0.signed_volume, 1.0, 1e-9);
   EXPECT_EQ(t.components, t0.components);
   EXPECT_EQ(t.genus, t0.genus);
+}
+
+// The stress generator's orthogonal inputs (random unions of ellipsoids and tori, 2-4 axis
+// planes, crossing curves sewn), each turned as a whole: every result keeps the guarantees, runs
+// in the frame, and has the unturned result's genus and components and nearly its volume.
+TEST(AlignedFrame, GeneratedInputsTurnedAsAWholeKeepTheGuarantees) {
+  int frames = 0;
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    GeneratorOptions g;
+    g.seed = seed;
+    g.orthogonal_planes = 2 + static_cast<int>(seed % 3);
+    g.oblique_planes = 0;
+    g.min_curve_points = 24;
+    g.max_curve_points = 60;
+    const SectionSet axis = generate_sections(g).sections;
+    if (axis.curves.empty()) continue;
+    auto flat = reconstruct(axis, no_improve());
+    ASSERT_TRUE(flat) << "seed " << seed << ": " << flat.message();
+    const double angle = 0.3 + 0.4 * static_cast<double>(seed);
+    const Vec3 axis_of_turn(std::cos(static_cast<double>(seed)), std::sin(1.7 * static_cast<double>(seed)), 0.5);
+    const SectionSet s = moved_sections(axis, turn(angle, axis_of_turn), Vec3(0.1, -0.2, 0.3));
+    ReconstructReport rep;
+    auto m = reconstruct(s, no_improve(), &rep);
+    ASSERT_TRUE(m) << "seed " << seed << ": " << m.message();
+    frames += rep.rotated_frame;
+    const auto g_ok = check_guarantees(*m);
+    EXPECT_TRUE(g_ok.valid()) << "seed " << seed << ": " << g_ok.problem();
+    const double diag = bounding_box(s.all_points()).diagonal();
+    EXPECT_LE(max_distance_to_surface(*m, s.all_points()), 1e-9 * diag) << "seed " << seed;
+    const auto t = mesh_topology(*m), t0 = mesh_topology(*flat);
+    // The generator's curves cross near, not at, the same points; curve sewing joins them in
+    // the canonical order of the curves, which sorts by coordinates and so differs between the
+    // frames: the volumes agree to 0.3% here (seeds 1, 2, 9 and 12 exactly), not to rounding
+    // as for the ellipsoid's exactly shared crossings above.
+    EXPECT_NEAR(t.signed_volume / t0.signed_volume, 1.0, 1e-2) << "seed " << seed;
+    EXPECT_EQ(t.components, t0.components) << "seed " << seed;
+    EXPECT_EQ(t.genus, t0.genus) << "seed " << seed;
+  }
+  EXPECT_GE(frames, 10);
 }
 
 TEST(AlignedFrame, ResultDoesNotDependOnInputOrder) {
