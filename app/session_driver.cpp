@@ -14,10 +14,6 @@
 #include "modeling/stroke_preprocess.h"
 
 namespace ps::app {
-namespace {
-constexpr double kRoiRadius = kDefaultRoiRadius;
-constexpr double kBrushRadius = kDefaultBrushRadius;
-}  // namespace
 
 SessionDriver::SessionDriver(SessionParams params) : session_(std::move(params)) {}
 
@@ -60,7 +56,7 @@ void SessionDriver::on_action(const TimedEvent& e) {
           // it is set (and not kept) rather than at the next stroke.
           if ((a.name == "deform_radius" || a.name == "brush_radius") && !(a.value > 0.0 && std::isfinite(a.value))) {
             report(e.t, e.line, a.name + " must be a positive fraction of the model's size; kept " +
-                                    std::to_string(parameter(a.name, a.name == "brush_radius" ? kBrushRadius : kRoiRadius)));
+                                    std::to_string(parameter(a.name, a.name == "brush_radius" ? kDefaultBrushRadius : kDefaultRoiRadius)));
             return;
           }
           if (a.name == "stiffness" && !(a.value >= 0.0 && a.value <= 1.0)) {
@@ -359,7 +355,7 @@ void SessionDriver::deform_stroke(double t, const std::vector<Vec2>& pts) {
     op.roi = *pending_roi_;
   } else {
     op.roi.method = VertexSelection::Method::kRadius;
-    op.roi.radius = parameter("deform_radius", kRoiRadius);
+    op.roi.radius = parameter("deform_radius", kDefaultRoiRadius);
   }
   op.plane_rotation = parameter("deform_rotation", 0.0);
   if (auto st = session_.deform(op); !st) {
@@ -388,7 +384,7 @@ VertexSelection SessionDriver::selection_from(const std::vector<Vec2>& pts) cons
   const auto filtered = filter_close_points(pts, session_.params().stroke.min_spacing_px);
   sel.method = filtered.size() >= 3 && is_closed_stroke(filtered, session_.params().stroke) ? VertexSelection::Method::kLasso
                                                                                           : VertexSelection::Method::kBrush;
-  sel.radius = parameter("brush_radius", kBrushRadius);
+  sel.radius = parameter("brush_radius", kDefaultBrushRadius);
   sel.stroke = pts;
   sel.camera = input_.camera;
   return sel;

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "modeling/face_intersections.h"
+#include "modeling/mesh_topology.h"
 #include "modeling/point_triangle_distance.h"
 
 namespace ps {
@@ -96,15 +97,19 @@ void shrink_top(TriMesh& m, const PrimitiveInfo& info, double s) {
   }
 }
 
+// q lies inside zone z by 0.5% of the zone's extent along every axis but `skip` (-1: none).
+bool inside_by_margin(const Vec3& q, const Zone& z, int skip) {
+  for (int a = 0; a < 3; ++a) {
+    if (a == skip) continue;
+    const double margin = 0.005 * z.extent(a);
+    if (!(q[a] > z.min[a] + margin && q[a] < z.max[a] - margin)) return false;
+  }
+  return true;
+}
+
 bool top_inside(const TriMesh& m, const PrimitiveInfo& info, const Zone& z) {
-  const int k = prism_axis(info);
   for (int i = info.bottom_count; i < 2 * info.bottom_count; ++i)
-    for (int a = 0; a < 3; ++a) {
-      if (a == k) continue;
-      const double margin = 0.005 * z.extent(a);
-      const double c = m.vertices[uz(i)][a];
-      if (!(c > z.min[a] + margin && c < z.max[a] - margin)) return false;
-    }
+    if (!inside_by_margin(m.vertices[uz(i)], z, prism_axis(info))) return false;
   return true;
 }
 
@@ -232,6 +237,9 @@ std::vector<int> zone_chain(const Partition& part, const Vec3& from, const Vec3&
   return chain;
 }
 
+// The coordinate of face `f` (0..5 = -x,+x,-y,+y,-z,+z) of zone `z` along its axis f / 2.
+double face_coordinate(const Zone& z, int f) { return f % 2 == 0 ? z.min[f / 2] : z.max[f / 2]; }
+
 // The face of zone `z` shared with the face-adjacent zone `n`: index 0..5 (-x,+x,-y,+y,-z,+z).
 int shared_face(const Zone& z, const Zone& n) {
   for (int k = 0; k < 3; ++k)
@@ -245,7 +253,7 @@ int shared_face(const Zone& z, const Zone& n) {
 // along d, or when no shrink fits.
 std::optional<std::vector<Vec3>> project_onto_face(const std::vector<Vec3>& from, const Vec3& d, const Zone& z, int f) {
   const int j = f / 2;
-  const double c = f % 2 == 0 ? z.min[j] : z.max[j];
+  const double c = face_coordinate(z, f);
   const double floor_s = 1e-9 * z.extent(j);
   std::vector<Vec3> out;
   for (const Vec3& p : from) {
@@ -261,13 +269,9 @@ std::optional<std::vector<Vec3>> project_onto_face(const std::vector<Vec3>& from
     std::vector<Vec3> shrunk = out;
     bool inside_face = true;
     for (auto& q : shrunk) {
-      for (int a = 0; a < 3; ++a) {
-        if (a == j) continue;
-        q[a] = centre[a] + f_scale * (q[a] - centre[a]);
-        const double margin = 0.005 * z.extent(a);
-        if (!(q[a] > z.min[a] + margin && q[a] < z.max[a] - margin)) inside_face = false;
-      }
+      q = centre + f_scale * (q - centre);
       q[j] = c;
+      inside_face = inside_face && inside_by_margin(q, z, j);
     }
     if (inside_face) return shrunk;
   }
@@ -276,22 +280,14 @@ std::optional<std::vector<Vec3>> project_onto_face(const std::vector<Vec3>& from
 
 // A prism-shaped solid (the layout of PrimitiveInfo) is a valid operand: positive volume and no
 // two faces crossing.
-bool valid_solid(const TriMesh& m) {
-  double six_volume = 0.0;
-  for (const auto& f : m.faces)
-    six_volume += m.vertices[uz(f[0])].dot(m.vertices[uz(f[1])].cross(m.vertices[uz(f[2])]));
-  if (!(six_volume > 0.0)) return false;
-  std::vector<int> all(m.faces.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-  return intersecting_face_pairs(m.vertices, m.faces, all).empty();
-}
+bool valid_solid(const TriMesh& m) { return signed_volume(m) > 0.0 && self_intersecting_pairs(m).empty(); }
 
 // Whether a primitive other than `skip` of zone `zi` has a vertex on the plane of face `f`,
 // within that face: material there would meet the new cap.
 bool face_touched(const Partition& part, const std::vector<ZonePrimitives>& prims, int zi, int f, int skip) {
   const Zone& z = part.zones[uz(zi)];
   const int j = f / 2;
-  const double c = f % 2 == 0 ? z.min[j] : z.max[j];
+  const double c = face_coordinate(z, f);
   const auto& zp = prims[uz(zi)];
   for (std::size_t i = 0; i < zp.solids.size(); ++i) {
     if (static_cast<int>(i) == skip) continue;
@@ -346,10 +342,10 @@ Status join_across_zones(const Partition& part, std::vector<ZonePrimitives>& pri
   for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
     const Zone& z = part.zones[uz(chain[i])];
     const int f = shared_face(z, part.zones[uz(chain[i + 1])]);
-    const Vec3 c = bottom.empty() ? Vec3::Zero() : centroid(bottom, 0, bottom.size());
+    const Vec3 c = centroid(bottom, 0, bottom.size());
     Vec3 aim = through[i + 1];
     for (int k = 0; k < 3; ++k)
-      aim[k] = k == f / 2 ? (f % 2 == 0 ? z.min[k] : z.max[k])
+      aim[k] = k == f / 2 ? face_coordinate(z, f)
                           : std::clamp(aim[k], z.min[k] + 0.1 * z.extent(k), z.max[k] - 0.1 * z.extent(k));
     auto top = project_onto_face(bottom, aim - c, z, f);
     if (!top)
@@ -379,11 +375,7 @@ Status join_across_zones(const Partition& part, std::vector<ZonePrimitives>& pri
     for (std::size_t v = 0; v < n; ++v) {
       m.vertices[v] = bottom[v];
       m.vertices[n + v] = bottom[v] + (static_cast<double>(step) / kSteps) * d;
-      for (int k = 0; k < 3; ++k) {
-        const double margin = 0.005 * zb.extent(k);
-        if (!(m.vertices[n + v][k] > zb.min[k] + margin && m.vertices[n + v][k] < zb.max[k] - margin))
-          return std::nullopt;
-      }
+      if (!inside_by_margin(m.vertices[n + v], zb, -1)) return std::nullopt;
     }
     return m;
   };
