@@ -106,7 +106,7 @@ SnappedSolid assemble(const Base& b, const std::vector<Vec3>& top, const std::ve
       s.mesh.faces.push_back({j, i, n + i});
       s.mesh.faces.push_back({j, n + i, n + j});
     }
-  if (signed_volume(s.mesh) < 0)
+  if (signed_volume(s.mesh, s.mesh.vertices.front()) < 0)  // near the mesh: no cancellation far from the origin
     for (auto& f : s.mesh.faces) std::swap(f[1], f[2]);
   return s;
 }

@@ -209,7 +209,18 @@ MeshTopology mesh_topology(const TriMesh& mesh) {
     // chi = sum over components (2 - 2 g_c)  =>  total genus = (2C - chi) / 2
     t.genus = (2 * t.components - t.euler_characteristic) / 2;
   }
-  t.signed_volume = signed_volume(mesh);
+  // Relative to the centre of the vertices' box, not the origin: the volume is the same, but a
+  // mesh far from the origin summed tetrahedra with the origin of size |p|^3 whose rounding
+  // swamped it (the fuzz seed valid_far_away, at 1e6 with unit size, came out "inside out"
+  // or not depending on rounding).
+  if (!mesh.vertices.empty()) {
+    Vec3 lo = mesh.vertices.front(), hi = lo;
+    for (const auto& p : mesh.vertices) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    t.signed_volume = signed_volume(mesh, 0.5 * (lo + hi));
+  }
 
   // === First problem in words
   if (nf == 0)

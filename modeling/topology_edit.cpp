@@ -280,7 +280,11 @@ std::optional<std::vector<Vec3>> project_onto_face(const std::vector<Vec3>& from
 
 // A prism-shaped solid (the layout of PrimitiveInfo) is a valid operand: positive volume and no
 // two faces crossing.
-bool valid_solid(const TriMesh& m) { return signed_volume(m) > 0.0 && self_intersecting_pairs(m).empty(); }
+// The volume about one of its vertices: about the origin, a solid far from it loses the volume's
+// sign to rounding.
+bool valid_solid(const TriMesh& m) {
+  return !m.vertices.empty() && signed_volume(m, m.vertices.front()) > 0.0 && self_intersecting_pairs(m).empty();
+}
 
 // Whether a primitive other than `skip` of zone `zi` has a vertex on the plane of face `f`,
 // within that face: material there would meet the new cap.

@@ -60,7 +60,7 @@ Result<TriMesh> extrude_window_polygon(const std::vector<Vec2>& poly, const Came
     m.faces.push_back({i, i + ni, j + ni});
   }
   // Window y points down and the rays diverge, so the orientation is settled by the volume.
-  if (signed_volume(m) < 0)
+  if (signed_volume(m, m.vertices.front()) < 0)  // near the mesh: no cancellation far from the origin
     for (auto& face : m.faces) std::swap(face[1], face[2]);
   return m;
 }
