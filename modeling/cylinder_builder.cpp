@@ -127,15 +127,39 @@ TriMesh prism(const PieceCache& pc, int k, double c0, double c1, const std::vect
     m.faces.push_back({t[0], t[2], t[1]});
     m.faces.push_back({t[0] + n, t[1] + n, t[2] + n});
   }
+  if (c1 < c0)
+    for (auto& f : m.faces) std::swap(f[1], f[2]);
+  // Walls: one quad per loop edge, outward oriented (a, b, c, d). A top pulled at one end of the
+  // edge only makes the quad non-planar, and then its diagonal decides the solid: it is chosen
+  // by the geometry, the one giving the convex fold (exact orientation test), so that the prism
+  // does not depend on the direction of its loops (a mirrored input traverses them the other way
+  // round; with the diagonal tied to the loop order a half turn of the input moved its volume by
+  // up to 6.5e-5). A planar quad takes the shorter diagonal.
+  auto point = [&](int v) {
+    const Vec3& p = m.vertices[uz(v)];
+    return cdt::K::Point_3(p.x(), p.y(), p.z());
+  };
   for (const auto& r : pc.loop_range) {
     for (int i = r[0]; i < r[1]; ++i) {
       const int j = i + 1 == r[1] ? r[0] : i + 1;
-      m.faces.push_back({i, j, j + n});
-      m.faces.push_back({i, j + n, i + n});
+      const std::array<int, 4> q =
+          c1 < c0 ? std::array<int, 4>{i, i + n, j + n, j} : std::array<int, 4>{i, j, j + n, i + n};
+      const CGAL::Orientation o = CGAL::orientation(point(q[0]), point(q[1]), point(q[2]), point(q[3]));
+      bool across_ac = o == CGAL::NEGATIVE;  // d behind the plane of (a, b, c): the fold along a-c is convex
+      if (o == CGAL::COPLANAR) {
+        const double ac = (m.vertices[uz(q[2])] - m.vertices[uz(q[0])]).squaredNorm();
+        const double bd = (m.vertices[uz(q[3])] - m.vertices[uz(q[1])]).squaredNorm();
+        across_ac = !(bd < ac);
+      }
+      if (across_ac) {
+        m.faces.push_back({q[0], q[1], q[2]});
+        m.faces.push_back({q[0], q[2], q[3]});
+      } else {
+        m.faces.push_back({q[0], q[1], q[3]});
+        m.faces.push_back({q[1], q[2], q[3]});
+      }
     }
   }
-  if (c1 < c0)
-    for (auto& f : m.faces) std::swap(f[1], f[2]);
   return m;
 }
 
