@@ -134,7 +134,10 @@ TriMesh prism(const PieceCache& pc, int k, double c0, double c1, const std::vect
   // by the geometry, the one giving the convex fold (exact orientation test), so that the prism
   // does not depend on the direction of its loops (a mirrored input traverses them the other way
   // round; with the diagonal tied to the loop order a half turn of the input moved its volume by
-  // up to 6.5e-5). A planar quad takes the shorter diagonal.
+  // up to 6.5e-5). A planar quad keeps a-c: either diagonal gives the same solid. Planar by
+  // construction, without the test: both ends moved alike (a rectangle or parallelogram), or the
+  // edge and the difference of the moves along one axis (exact zeros below); the exact test of
+  // such a quad falls back to multiprecision and made the primitives stage 60% dearer.
   auto point = [&](int v) {
     const Vec3& p = m.vertices[uz(v)];
     return cdt::K::Point_3(p.x(), p.y(), p.z());
@@ -144,13 +147,11 @@ TriMesh prism(const PieceCache& pc, int k, double c0, double c1, const std::vect
       const int j = i + 1 == r[1] ? r[0] : i + 1;
       const std::array<int, 4> q =
           c1 < c0 ? std::array<int, 4>{i, i + n, j + n, j} : std::array<int, 4>{i, j, j + n, i + n};
-      const CGAL::Orientation o = CGAL::orientation(point(q[0]), point(q[1]), point(q[2]), point(q[3]));
-      bool across_ac = o == CGAL::NEGATIVE;  // d behind the plane of (a, b, c): the fold along a-c is convex
-      if (o == CGAL::COPLANAR) {
-        const double ac = (m.vertices[uz(q[2])] - m.vertices[uz(q[0])]).squaredNorm();
-        const double bd = (m.vertices[uz(q[3])] - m.vertices[uz(q[1])]).squaredNorm();
-        across_ac = !(bd < ac);
-      }
+      const Vec2 e = pc.points[uz(j)] - pc.points[uz(i)];
+      const Vec2 dp = (top[uz(j)] - pc.points[uz(j)]) - (top[uz(i)] - pc.points[uz(i)]);
+      const bool planar = (e.x() == 0.0 || dp.y() == 0.0) && (e.y() == 0.0 || dp.x() == 0.0);
+      const bool across_ac =
+          planar || CGAL::orientation(point(q[0]), point(q[1]), point(q[2]), point(q[3])) != CGAL::POSITIVE;
       if (across_ac) {
         m.faces.push_back({q[0], q[1], q[2]});
         m.faces.push_back({q[0], q[2], q[3]});
