@@ -465,7 +465,10 @@ Result<TriMesh> extrude_by_strokes(const TriMesh& model, const std::vector<Vec2>
     report->smoothed_vertices = steps_done > 0 ? region : 0;
     report->smooth_steps = steps_done;
     report->boolean_attempts = attempts;
-    report->added_volume = signed_volume(result) - before.signed_volume;
+    // About a point of the mesh, as mesh_topology sums `before`: about the origin a model far
+    // from it loses the volume to rounding.
+    report->added_volume =
+        (result.vertices.empty() ? 0.0 : signed_volume(result, result.vertices.front())) - before.signed_volume;
     report->dug = dig;
     report->genus_change = after.genus - before.genus;
   }
