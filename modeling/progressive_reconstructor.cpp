@@ -297,6 +297,66 @@ ValidatedSections scaled_sections(const ValidatedSections& in, int k) {
   return out;
 }
 
+// === Canonical axes (the grid path). A signed permutation of the axes is exact in doubles, and
+// the grid path gives the same surface under one (tests/recon_axis_permutation_test.cpp), but not
+// the same triangulation (the zone unions meet their operands in another order), and the mesh
+// improvement follows the triangulation: a mirror of the input moved the improved surface by up
+// to 0.13 of the diagonal (docs/mesh-improvement.md). So the grid runs in a frame chosen from the
+// box alone: axes by decreasing extent (ties in axis order), each pointing away from the origin
+// as the box's centre does (a centre on 0 keeps its sign). Moving the input by a signed
+// permutation moves its box the same way, so the frame, and every bit of the result in it, is
+// the same; the mesh is mapped back exactly. A function of the box, it stays while the box is
+// kept, and with it the progressive caches.
+struct SignedAxes {
+  std::array<int, 3> axis{0, 1, 2};  // frame axis i is world axis axis[i] times sign[i]
+  std::array<double, 3> sign{1.0, 1.0, 1.0};
+  bool identity() const {
+    return axis == std::array<int, 3>{0, 1, 2} && sign == std::array<double, 3>{1.0, 1.0, 1.0};
+  }
+  // A mirror (odd permutation times the signs' product negative): mapping back turns the
+  // faces inside out.
+  bool mirrors() const {
+    const bool odd = (axis[0] > axis[1]) != ((axis[0] > axis[2]) != (axis[1] > axis[2]));
+    return (sign[0] * sign[1] * sign[2] < 0.0) != odd;
+  }
+  Vec3 to_frame(const Vec3& p) const {
+    return Vec3(sign[0] * p[axis[0]], sign[1] * p[axis[1]], sign[2] * p[axis[2]]);
+  }
+  Vec3 to_world(const Vec3& q) const {
+    Vec3 p;
+    for (int i = 0; i < 3; ++i) p[axis[uz(i)]] = sign[uz(i)] * q[i];
+    return p;
+  }
+  Box3 to_frame(const Box3& b) const {
+    Box3 out;
+    for (int i = 0; i < 3; ++i) {
+      const int a = axis[uz(i)];
+      out.min[i] = sign[uz(i)] > 0 ? b.min[a] : -b.max[a];
+      out.max[i] = sign[uz(i)] > 0 ? b.max[a] : -b.min[a];
+    }
+    return out;
+  }
+};
+
+SignedAxes canonical_axes(const Box3& box) {
+  SignedAxes f;
+  const Vec3 ext = box.max - box.min;
+  std::stable_sort(f.axis.begin(), f.axis.end(), [&](int x, int y) { return ext[x] > ext[y]; });
+  for (int i = 0; i < 3; ++i) {
+    const int a = f.axis[uz(i)];
+    f.sign[uz(i)] = box.min[a] + box.max[a] < 0.0 ? -1.0 : 1.0;
+  }
+  return f;
+}
+
+SectionSet to_frame(const SectionSet& s, const SignedAxes& f) {
+  SectionSet out = s;
+  for (auto& pl : out.planes) pl.normal = f.to_frame(pl.normal);  // the offset is unchanged
+  for (auto& c : out.curves)
+    for (auto& p : c.points) p = f.to_frame(p);
+  return out;
+}
+
 // Zone counts of either partition (grid or convex zones) into the report.
 template <class Part>
 void count_zones(const Part& part, ReconstructReport& rep) {
@@ -779,6 +839,19 @@ Result<TriMesh> ProgressiveReconstructor::update_in_frame(const SectionSet& inpu
   const AlignedFrame this_frame = frame ? *frame : AlignedFrame{};
   if (inside && this_frame.rotation != frame_.rotation) inside = false;
   if (!inside) box = default_reconstruction_box(points);
+  // The box as kept, in the aligned frame; below, the grid path turns it to its canonical axes.
+  const Box3 frame_box = box;
+  const SignedAxes axes = orthogonal && options_.canonical_axes ? canonical_axes(box) : SignedAxes{};
+  std::optional<ValidatedSections> turned;
+  if (!axes.identity()) {
+    auto v = validate_sections(canonical_sections(to_frame(s, axes)));
+    if (!v) return Result<TriMesh>::error("after turning to the canonical axes: " + v.message());
+    turned = std::move(*v);
+    box = axes.to_frame(box);
+    for (auto& e : edits)
+      for (auto& p : e.stroke) p = axes.to_frame(p);
+  }
+  const ValidatedSections& vsec = turned ? *turned : *valid;
   // === Scale normalisation. Everything below runs on the input scaled by 2^k so that the box
   // diagonal lies in [1, 2): CGAL's static filters give up far from unit scale (coordinates of
   // 1e-30 sent every predicate to exact arithmetic: minutes instead of milliseconds), and a few
@@ -786,8 +859,7 @@ Result<TriMesh> ProgressiveReconstructor::update_in_frame(const SectionSet& inpu
   // come back bit-identical and k is a function of the box alone (the cache stays valid while
   // the box is kept).
   const int k = scale_exponent(box);
-  const ValidatedSections scaled = scaled_sections(*valid, k);
-  const Box3 user_box = box;
+  const ValidatedSections scaled = scaled_sections(vsec, k);
   box = scaled_box(box, k);
   const double diag = box.diagonal();
   const double tol = 1e-10 * diag;
@@ -918,6 +990,11 @@ Result<TriMesh> ProgressiveReconstructor::update_in_frame(const SectionSet& inpu
   // Back to the caller's units: exact, and curve vertices are the input points themselves.
   for (auto& v : mesh.vertices)
     for (int c = 0; c < 3; ++c) v[c] = std::ldexp(v[c], -k);
+  // Back from the canonical axes: exact.
+  if (!axes.identity())
+    for (auto& v : mesh.vertices) v = axes.to_world(v);
+  if (axes.mirrors())
+    for (auto& f : mesh.faces) std::swap(f[1], f[2]);
   // Back to the world frame: each input point exactly, every other vertex rotated. Rotating
   // rounds (a few ulps), and two faces closer than that could cross: the result is checked,
   // and the caller falls back to chapter 6 in the world frame if they do.
@@ -936,7 +1013,7 @@ Result<TriMesh> ProgressiveReconstructor::update_in_frame(const SectionSet& inpu
 
   // === Commit state
   cache_ = std::move(cache);
-  box_ = user_box;
+  box_ = frame_box;
   box_fixed_ = true;
   frame_ = this_frame;
   sections_ = input;

@@ -27,6 +27,11 @@ struct ReconstructOptions {
   // Planes in at most three orthogonal directions other than the axes (a tilted stack) go to the
   // grid of chapter 4 in their own frame (aligned_frame.h); false: chapter 6 in the world frame.
   bool rotate_to_planes = true;
+  // The grid runs on canonical axes chosen from the box (axes by decreasing extent, each pointing
+  // the way the box's centre lies from the origin) and the mesh is mapped back exactly, so any
+  // permutation or mirror of the input's axes gives the same mesh, moved, bit for bit, with the
+  // improvement too (docs/reconstruction.md). false: the grid in the input's own axes.
+  bool canonical_axes = true;
   // Called with a stage name and a fraction in [0, 1]; used to show progress on long runs.
   // The union stage of planes of any orientation reports per zone from the worker threads,
   // one call at a time.

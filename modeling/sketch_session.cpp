@@ -611,6 +611,10 @@ Status SketchSession::build(const SessionParams& params, SessionState& next, Rec
   if (!sewn) return Status::error("stroke rule 4: " + sewn.message());
   ReconstructOptions ro;
   ro.improve = false;  // improved below, within the interactive budget
+  // The session keeps the input's own axes (not yet the canonical ones of the command line): the
+  // bundled deform log's strokes were drawn on those models, and one of its deformations would
+  // cross the surface of the canonical-axis model; re-recording it is left for later.
+  ro.canonical_axes = false;
   ProgressiveReconstructor reconstructor(ro);
   auto mesh = reconstructor.update(*sewn, next.edits, &report);
   if (!mesh) return mesh.status();
