@@ -487,6 +487,9 @@ std::string parse_event(const json& j, TimedEvent& out, std::string& unknown, bo
     return "missing field 'type'";
   }
   PS_TRY(o.string("type", type));
+  // An empty type is not an unknown one to skip: the caller tells them apart by `unknown` being
+  // non-empty, and an empty one let a default event through (found by stroke_log_fuzz).
+  if (type.empty()) return "field 'type' is empty";
   PS_TRY(o.number("t", out.t));
   if (out.t < 0.0) return "time t = " + num(out.t) + " is negative";
   if (type == "pen") {

@@ -40,6 +40,13 @@ std::vector<std::string> seeds() {
   out.push_back(out.back() + "{\"t\":9,\"type\":\"future_event\",\"k\":[1,2]}\n{\"t\":10,\"type\":\"pen\",\"x\":1");
   out.push_back("");
   out.push_back("{}\n");
+  // Inputs the fuzzer once crashed on (kept in its corpus).
+  for (const char* name : {"regression_empty_type.jsonl"}) {
+    std::ifstream f(std::string(PLANESKETCH_SOURCE_DIR) + "/tests/fuzz/corpus/stroke_log/" + name, std::ios::binary);
+    std::ostringstream text;
+    text << f.rdbuf();
+    out.push_back(text.str());
+  }
   return out;
 }
 

@@ -249,6 +249,9 @@ std::vector<BadCase> bad_cases() {
       {"open digest", h + "{\"t\":0,\"type\":\"open\",\"kind\":\"mesh\",\"path\":\"/a.off\",\"digest\":\"0123456789ABCDEF\"}\n", 2,
        "field 'digest' must be 16 lower-case hex digits"},
       {"open no path", h + "{\"t\":0,\"type\":\"open\",\"kind\":\"mesh\",\"digest\":\"0123456789abcdef\"}\n", 2, "missing field 'path'"},
+      // Not an unknown type to skip: it let a default pen sample through, which the writer then
+      // refused (stroke_log_fuzz, 2026-12-07; the input is a seed of its corpus now).
+      {"empty type", h + "{\"t\":802,\"type\":\"\",\"phase\":\"move\"}\n", 2, "field 'type' is empty"},
   };
 }
 
