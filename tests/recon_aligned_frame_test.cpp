@@ -18,7 +18,7 @@
 #include "modeling/mesh_topology.h"
 #include "modeling/progressive_reconstructor.h"
 #include "modeling/reconstruct.h"
-#include "modeling/section_generator.h"
+#include "recon_generated.h"
 #include "recon_synthetic.h"
 
 using namespace ps;
@@ -194,17 +194,11 @@ TEST(AlignedFrame, TurnedOrthogonalSectionsMatchTheOrthogonalSolid) {
 
 // The stress generator's orthogonal inputs (random unions of ellipsoids and tori, 2-4 axis
 // planes, crossing curves sewn), each turned as a whole: every result keeps the guarantees, runs
-// in the frame, and has the unturned result's genus and components and nearly its volume.
+// in the frame, and has the unturned result's genus, components and volume (to rounding).
 TEST(AlignedFrame, GeneratedInputsTurnedAsAWholeKeepTheGuarantees) {
   int frames = 0;
   for (std::uint64_t seed = 1; seed <= 12; ++seed) {
-    GeneratorOptions g;
-    g.seed = seed;
-    g.orthogonal_planes = 2 + static_cast<int>(seed % 3);
-    g.oblique_planes = 0;
-    g.min_curve_points = 24;
-    g.max_curve_points = 60;
-    const SectionSet axis = generate_sections(g).sections;
+    const SectionSet axis = generated_orthogonal(seed);
     if (axis.curves.empty()) continue;
     auto flat = reconstruct(axis, no_improve());
     ASSERT_TRUE(flat) << "seed " << seed << ": " << flat.message();

@@ -17,7 +17,7 @@
 #include "modeling/mesh_queries.h"
 #include "modeling/mesh_topology.h"
 #include "modeling/reconstruct.h"
-#include "modeling/section_generator.h"
+#include "recon_generated.h"
 #include "recon_synthetic.h"
 
 using namespace ps;
@@ -32,21 +32,11 @@ Eigen::Matrix3d cyclic() {
   return r;
 }
 
-SectionSet generated(std::uint64_t seed) {
-  GeneratorOptions g;
-  g.seed = seed;
-  g.orthogonal_planes = 2 + static_cast<int>(seed % 3);
-  g.oblique_planes = 0;
-  g.min_curve_points = 24;
-  g.max_curve_points = 60;
-  return generate_sections(g).sections;
-}
-
 }  // namespace
 
 // The exact permutation applied twice more gives the input back: a check of the test's tool.
 TEST(AxisPermutation, ThreeCyclesAreTheIdentity) {
-  const SectionSet s = generated(3);
+  const SectionSet s = generated_orthogonal(3);
   const Eigen::Matrix3d r = cyclic();
   const SectionSet back = moved_sections(moved_sections(moved_sections(s, r, Vec3::Zero()), r, Vec3::Zero()), r,
                                          Vec3::Zero());
@@ -69,7 +59,7 @@ TEST(AxisPermutation, PermutedOrMirroredAxesGiveTheSameSurface) {
   moves.emplace_back("x and y swapped", swap);
   int compared = 0;
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
-    const SectionSet s = generated(seed);
+    const SectionSet s = generated_orthogonal(seed);
     if (s.curves.empty()) continue;
     auto a = reconstruct(s, no_improve());
     ASSERT_TRUE(a) << "seed " << seed << ": " << a.message();
@@ -107,7 +97,7 @@ TEST(AxisPermutation, ImprovedMeshesFollowTheMovesExactly) {
   const std::vector<std::pair<const char*, Eigen::Matrix3d>> moves{
       {"cycle", cyclic()}, {"mirror in y", Eigen::Vector3d(1, -1, 1).asDiagonal().toDenseMatrix()}};
   for (std::uint64_t seed = 1; seed <= 2; ++seed) {
-    const SectionSet s = generated(seed);
+    const SectionSet s = generated_orthogonal(seed);
     if (s.curves.empty()) continue;
     auto a = reconstruct(s, ReconstructOptions{});
     ASSERT_TRUE(a) << "seed " << seed << ": " << a.message();
