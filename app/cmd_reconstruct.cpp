@@ -25,7 +25,7 @@ namespace {
 struct Options {
   std::string input, output, report, edits;
   bool no_improve = false;
-  int improve_rounds = 10;
+  int improve_rounds = ps::ReconstructOptions{}.improve_iterations;
   bool repair = false;
   bool world_frame = false;
   int threads = 0;
@@ -160,10 +160,10 @@ void setup(CLI::App& root) {
   cmd->add_option("--edits", opts->edits,
                   "Topology edits to apply (JSON: {\"edits\": [{\"kind\": \"join\"|\"split\", \"stroke\": [[x,y,z],...]}]})");
   auto* no_improve = cmd->add_flag("--no-improve", opts->no_improve, "Skip refinement and smoothing");
-  // Fewer rounds trade smoothness for time on dense inputs (each round refines and smooths the
-  // whole surface and checks it for self-intersections; docs/mesh-improvement.md).
+  // Each round refines and smooths the whole surface and checks it for self-intersections; more
+  // rounds cost more time and do not always give a smoother surface (docs/mesh-improvement.md).
   cmd->add_option("--improve-rounds", opts->improve_rounds,
-                  "Rounds of refinement and smoothing, 1 to 100 (default 10, as in the thesis)")
+                  "Rounds of refinement and smoothing, 1 to 100 (default 4; the thesis has 10)")
       ->check(CLI::Range(1, 100))
       ->excludes(no_improve);
   cmd->add_flag("--repair", opts->repair,

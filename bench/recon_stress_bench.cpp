@@ -31,7 +31,7 @@
 // itself defaults to; issue 8's 10 s bound is for the tool as it runs on the 2-core machine).
 // Runs before 2026-12-06 18:00 UTC passed --threads 1; `--threads 1` repeats them.
 // --improve-rounds N is passed to every `planesketch reconstruct` (default: the command's own,
-// 10 rounds as in the thesis).
+// 4 rounds since 2026-12-07 22:00 UTC, 10 before; `--improve-rounds 10` repeats older runs).
 // --only-seed S runs only the case whose seed is S, as it is in the whole run (its family and
 // oblique planes depend on its index from --first-seed): to reproduce one case of a summary.
 // --keep-failures keeps the input and logs of every case that is not ok, except refusals of

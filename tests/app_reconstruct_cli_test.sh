@@ -95,12 +95,15 @@ if "$bin" reconstruct "$tmp/good.json" -o "$tmp/out.xyz" 2> "$tmp/err"; then ech
 # --improve-rounds: the number of improvement rounds, in the report; out of range or together
 # with --no-improve it is refused, naming the option, and nothing is written.
 "$bin" reconstruct "$tmp/good.json" -o "$tmp/two.obj" -q --improve-rounds 2 --report "$tmp/two.json"
-"$bin" reconstruct "$tmp/good.json" -o "$tmp/ten.obj" -q --report "$tmp/ten.json"
-python3 - "$tmp/two.json" "$tmp/ten.json" "$tmp/good-report.json" <<'PY'
+"$bin" reconstruct "$tmp/good.json" -o "$tmp/ten.obj" -q --improve-rounds 10 --report "$tmp/ten.json"
+"$bin" reconstruct "$tmp/good.json" -o "$tmp/default.obj" -q --report "$tmp/default.json"
+python3 - "$tmp/two.json" "$tmp/ten.json" "$tmp/good-report.json" "$tmp/default.json" <<'PY'
 import json, sys
-two, ten, none = (json.load(open(p)) for p in sys.argv[1:4])
+two, ten, none, default = (json.load(open(p)) for p in sys.argv[1:5])
 assert two["improve_rounds"] == 2 and ten["improve_rounds"] == 10 and none["improve_rounds"] == 0, (two, ten, none)
-for r in (two, ten):
+# Four rounds by default (docs/mesh-improvement.md, "Four rounds by default").
+assert default["improve_rounds"] == 4, default
+for r in (two, ten, default):
     assert r["closed"] and r["manifold"] and not r["self_intersecting"], r
     assert r["max_curve_distance_relative"] <= 1e-6, r
 # Refinement grows the mesh, and the number of rounds is honoured: two rounds and ten give
@@ -109,6 +112,7 @@ for r in (two, ten):
 # on this input ten rounds gave fewer faces than two after a change of the prisms' walls.)
 assert none["faces"] < two["faces"] and none["faces"] < ten["faces"], (none["faces"], two["faces"], ten["faces"])
 assert two["faces"] != ten["faces"] or two["volume"] != ten["volume"], (two, ten)
+assert default["faces"] != ten["faces"] or default["volume"] != ten["volume"], (default, ten)
 PY
 for bad in "--improve-rounds 0" "--improve-rounds 101" "--improve-rounds x" "--improve-rounds 3 --no-improve"; do
   rm -f "$tmp/out.obj"
