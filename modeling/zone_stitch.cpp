@@ -65,20 +65,73 @@ std::vector<std::array<double, 6>> canonical(const std::vector<Tri2>& tris) {
   return out;
 }
 
+// The constraint segments of a bucket: every triangle edge once, split at the points of the
+// bucket that lie within tol of its interior without being on it exactly. Two caps whose
+// boundaries meet in a chain of points rounding left a few 1e-20 either side of the other
+// cap's edge (stress seed 466: two points 1e-17 off an edge 0.008 long) otherwise give the CDT
+// constraints that cross at a grazing angle; their intersection points, constructed in doubles,
+// left a triangulation whose faces covered the region between the chains twice, and the stitch
+// an edge with three faces. A point exactly on an edge is unchanged: the CDT splits there
+// anyway. Written here because CGAL's snap rounding (Snap_rounding_2) moves every vertex to a
+// grid centre, including the curve points the surface must interpolate.
+std::vector<std::array<Vec2, 2>> snapped_segments(const FaceBucket& b, double tol) {
+  std::vector<std::pair<double, double>> points;
+  for (const auto* side : {&b.below, &b.above})
+    for (const auto& t : *side)
+      for (const auto& p : t) points.emplace_back(p.x(), p.y());
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  // Edges in the order the triangles list them (the order of insertion decides between
+  // cocircular triangulations, so it stays what it was before this split existed).
+  std::vector<std::array<Vec2, 2>> out;
+  std::vector<std::pair<double, Vec2>> on;
+  for (const auto* side : {&b.below, &b.above})
+    for (const auto& tri : *side)
+      for (int i = 0; i < 3; ++i) {
+        const Vec2& pa = tri[uz(i)];
+        const Vec2& pc = tri[uz((i + 1) % 3)];
+        const Vec2 d = pc - pa;
+        const double len2 = d.squaredNorm();
+        on.clear();
+        if (len2 > 0) {
+          // Points sorted by x: only those with x in the edge's range (widened by tol).
+          const double x0 = std::min(pa.x(), pc.x()) - tol, x1 = std::max(pa.x(), pc.x()) + tol;
+          const double y0 = std::min(pa.y(), pc.y()) - tol, y1 = std::max(pa.y(), pc.y()) + tol;
+          for (auto it = std::lower_bound(points.begin(), points.end(), std::make_pair(x0, -HUGE_VAL));
+               it != points.end() && it->first <= x1; ++it) {
+            const Vec2 p(it->first, it->second);
+            if (p.y() < y0 || p.y() > y1) continue;
+            const double t = (p - pa).dot(d) / len2;
+            if (!(t > 0.0 && t < 1.0)) continue;
+            if ((pa + t * d - p).norm() > tol || (p - pa).norm() <= tol || (p - pc).norm() <= tol) continue;
+            // Exactly on the edge: the CDT splits there itself.
+            if (CGAL::orientation(K::Point_2(pa.x(), pa.y()), K::Point_2(pc.x(), pc.y()), K::Point_2(p.x(), p.y())) ==
+                CGAL::COLLINEAR)
+              continue;
+            on.emplace_back(t, p);
+          }
+        }
+        if (on.empty()) {
+          out.push_back({pa, pc});
+          continue;
+        }
+        std::sort(on.begin(), on.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+        Vec2 prev = pa;
+        for (const auto& [t, p] : on) {
+          out.push_back({prev, p});
+          prev = p;
+        }
+        out.push_back({prev, pc});
+      }
+  return out;
+}
+
 // Triangles of (below XOR above), oriented outward, appended to `out` as 3D triangles.
-int cap_xor(const FaceBucket& b, std::vector<std::array<Vec3, 3>>& out) {
+int cap_xor(const FaceBucket& b, double tol, std::vector<std::array<Vec3, 3>>& out) {
   if (canonical(b.below) == canonical(b.above)) return 0;
   CDT cdt;
-  auto add = [&](const std::vector<Tri2>& tris) {
-    for (const auto& t : tris)
-      for (int i = 0; i < 3; ++i) {
-        const Vec2& p = t[uz(i)];
-        const Vec2& q = t[uz((i + 1) % 3)];
-        cdt.insert_constraint(CDT::Point(p.x(), p.y()), CDT::Point(q.x(), q.y()));
-      }
-  };
-  add(b.below);
-  add(b.above);
+  for (const auto& [p, q] : snapped_segments(b, tol))
+    cdt.insert_constraint(CDT::Point(p.x(), p.y()), CDT::Point(q.x(), q.y()));
   int kept = 0;
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
     Tri2 t;
@@ -492,7 +545,7 @@ TriMesh stitch_zones(const Partition& part, const std::vector<TriMesh>& solids, 
     }
   }
   std::vector<std::array<Vec3, 3>> caps;
-  for (const auto& [key, b] : buckets) rep.cap_triangles_kept += cap_xor(b, caps);
+  for (const auto& [key, b] : buckets) rep.cap_triangles_kept += cap_xor(b, tol, caps);
   for (const auto& t : caps) welder.triangle(t);
   TriMesh m = finish_weld(std::move(welder.mesh), tol, rep);
   if (report) *report = rep;
@@ -534,7 +587,7 @@ TriMesh stitch_polyhedral_zones(const PolyPartition& part, const std::vector<Tri
       ++rep.face_triangles_removed;
     }
   }
-  for (const auto& [key, b] : buckets) rep.cap_triangles_kept += cap_xor(b, soup);
+  for (const auto& [key, b] : buckets) rep.cap_triangles_kept += cap_xor(b, tol, soup);
   ExactWelder welder(soup.size() * 3);
   for (const auto& t : soup) welder.triangle(t);
   TriMesh m = finish_weld(std::move(welder.mesh), tol, rep);
