@@ -336,6 +336,30 @@ TEST_P(ImprovedStressSeed, ImprovedSurfaceMeetsEveryGuarantee) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SplitNeedles, ImprovedStressSeed, ::testing::Values(457, 558));
+
+// Seed 783 of the 1000-case mixed run (5 axis planes, 9 curves of 40-200 points, in-plane
+// jitter; tests/data/stress_seed783/README.md): its first improvement round redid the refinement
+// after a crossing between two long wall needles, and the flip lock around them (their box grown
+// by its diagonal) covered much of the surface; the centroid splits there, with no flips,
+// multiplied needles up to the 400k-face cap (mean smallest angle 11.5 deg, 33 s). The lock
+// grows by at most two length floors now (docs/mesh-improvement.md, "Smaller flip locks"): one
+// round ends near 270k faces of ordinary triangles. About 5 s in a release build.
+TEST(ImprovedStressSeed, FlipLockStaysNearTheCrossing) {
+  auto sections = ps::read_sections(std::string(PLANESKETCH_SOURCE_DIR) + "/tests/data/stress_seed783/case783.json");
+  ASSERT_TRUE(sections) << sections.message();
+  ps::ReconstructOptions options;
+  options.improve_iterations = 1;
+  ps::ReconstructReport report;
+  auto mesh = ps::reconstruct(*sections, options, &report);
+  ASSERT_TRUE(mesh) << mesh.message();
+  EXPECT_TRUE(report.improved);
+  EXPECT_LT(mesh->faces.size(), 330000u);  // 400000 (the cap) with the old lock
+  EXPECT_GT(ps::mesh_quality(*mesh).mean_min_angle_deg, 25.0);
+  const auto g = ps::check_guarantees(*mesh);
+  EXPECT_TRUE(g.valid()) << g.problem();
+  const auto pts = sections->all_points();
+  EXPECT_LE(ps::max_distance_to_surface(*mesh, pts), 1e-6 * ps::bounding_box(pts).diagonal());
+}
 #endif
 
 }  // namespace
